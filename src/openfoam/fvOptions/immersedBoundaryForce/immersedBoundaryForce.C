@@ -1,0 +1,85 @@
+#include "immersedBoundaryForce.H"
+#include "immersedDEMState.H"
+#include "dictionaryChecks.H"
+#include "fvMatrices.H"
+#include "fvmSup.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+namespace fv
+{
+    defineTypeNameAndDebug(immersedBoundaryForce, 0);
+    addToRunTimeSelectionTable(option, immersedBoundaryForce, dictionary);
+}
+}
+
+
+Foam::fv::immersedBoundaryForce::immersedBoundaryForce
+(
+    const word& name,
+    const word& modelType,
+    const dictionary& dict,
+    const fvMesh& mesh
+)
+:
+    option(name, modelType, dict, mesh),
+    state_(immersedDEMState::New(mesh)),
+    penalty_(100)
+{
+    read(dict);
+}
+
+
+bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
+{
+    if (!option::read(dict))
+    {
+        return false;
+    }
+    immersedDEMChecks::allowOnly(dict, {"type", "active", "fields", "penalty", "name"});
+    fieldNames_ = dict.getOrDefault<wordList>("fields", wordList{"U"});
+    if (fieldNames_.size() != 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Keyword 'fields' in " << dict.name()
+            << " must name one velocity field, not " << fieldNames_ << nl
+            << exit(FatalIOError);
+    }
+    applied_.setSize(fieldNames_.size(), false);
+    penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 100);
+    return true;
+}
+
+
+void Foam::fv::immersedBoundaryForce::addSup
+(
+    fvMatrix<vector>& eqn,
+    const label fieldi
+)
+{
+    const volVectorField& U = eqn.psi();
+    const dimensionedScalar K
+    (
+        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
+    );
+    const volScalarField::Internal KLambda(K*state_.lambda()());
+    eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, U);
+}
+
+
+void Foam::fv::immersedBoundaryForce::addSup
+(
+    const volScalarField& rho,
+    fvMatrix<vector>& eqn,
+    const label fieldi
+)
+{
+    const volVectorField& U = eqn.psi();
+    const dimensionedScalar K
+    (
+        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
+    );
+    const volScalarField::Internal rhoKLambda(rho()*K*state_.lambda()());
+    eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, U);
+}
