@@ -1,0 +1,77 @@
+#include "sphereOverlap.H"
+#include "sphereShape.H"
+#include "coreError.H"
+
+#include <cmath>
+
+namespace immersedDEM
+{
+
+double sphereOverlap::capVolume(double R, double hc)
+{
+    return M_PI*hc*hc*(3*R - hc)/3;
+}
+
+
+contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, double R2)
+{
+    contactGeometry g;
+    const vec3 d12 = c2 - c1;
+    const double d = d12.norm();
+    if (d >= R1 + R2)
+    {
+        return g;
+    }
+    contactRegion r;
+    r.normal = d > 0 ? vec3(d12/d) : vec3(vec3::UnitX());
+
+    if (d <= std::abs(R1 - R2))
+    {
+        // One ball inside the other
+        const bool oneSmaller = R1 <= R2;
+        const double Rs = oneSmaller ? R1 : R2;
+        r.volume = 4.0/3.0*M_PI*Rs*Rs*Rs;
+        r.point = oneSmaller ? c1 : c2;
+        r.area = 0;
+        g.regions.push_back(r);
+        return g;
+    }
+
+    // The discs' plane at distance x from c1 along the centre line
+    const double x = (d*d + R1*R1 - R2*R2)/(2*d);
+    const double h1 = R1 - x;           // cap of ball 1 beyond the plane
+    const double h2 = R2 - (d - x);     // cap of ball 2 before the plane
+    const double V1 = capVolume(R1, h1);
+    const double V2 = capVolume(R2, h2);
+    // Centroid of a cap of height hc from its ball's centre: 3(2R-hc)^2/(4(3R-hc))
+    const double z1 = 3*std::pow(2*R1 - h1, 2)/(4*(3*R1 - h1));
+    const double z2 = 3*std::pow(2*R2 - h2, 2)/(4*(3*R2 - h2));
+    r.volume = V1 + V2;
+    r.point = (V1*(c1 + z1*r.normal) + V2*(c2 - z2*r.normal))/r.volume;
+    r.area = M_PI*std::max(0.0, R1*R1 - x*x);
+    g.regions.push_back(r);
+    return g;
+}
+
+
+contactGeometry sphereOverlap::evaluate
+(
+    const shape& A, const bodyPose& pA,
+    const shape& B, const bodyPose& pB,
+    const overlapSettings&
+) const
+{
+    const auto* a = dynamic_cast<const sphereShape*>(&A);
+    const auto* b = dynamic_cast<const sphereShape*>(&B);
+    if (!a || !b)
+    {
+        throw coreError
+        (
+            "Overlap method 'sphere' needs two spheres, not " + A.type()
+          + " and " + B.type() + "; use virtualMesh"
+        );
+    }
+    return lens(pA.position(), a->radius(), pB.position(), b->radius());
+}
+
+} // End namespace immersedDEM

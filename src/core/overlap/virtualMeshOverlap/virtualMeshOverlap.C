@@ -1,0 +1,343 @@
+#include "virtualMeshOverlap.H"
+#include "coreError.H"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <unordered_set>
+
+namespace immersedDEM
+{
+
+namespace
+{
+
+using cellIndex = std::array<long, 3>;
+
+// What one base cell contributes
+struct baseCellSum
+{
+    double volume = 0;
+    vec3 first = vec3::Zero();
+    vec3 normalSum = vec3::Zero();
+    std::vector<vec3> edgePoints;
+    std::vector<std::pair<vec3, double>> cells;    // overlap cells: centre, size
+};
+
+class octreeWalk
+{
+    const shape& A_;
+    const bodyPose& pA_;
+    const shape& B_;
+    const bodyPose& pB_;
+    const int maxLevel_;
+
+public:
+
+    long queries = 0;
+    long leaves = 0;
+
+    octreeWalk
+    (
+        const shape& A, const bodyPose& pA, const shape& B, const bodyPose& pB, int L
+    )
+    :
+        A_(A), pA_(pA), B_(B), pB_(pB), maxLevel_(L)
+    {}
+
+    void visit
+    (
+        const vec3& lo, double s, int level, bool inA, bool inB, baseCellSum& sum
+    )
+    {
+        ++leaves;
+        const vec3 c = lo + vec3::Constant(0.5*s);
+        const double r = 0.5*std::sqrt(3.0)*s;
+
+        surfacePoint a, b;
+        if (!inA)
+        {
+            a = A_.closest(pA_, c);
+            ++queries;
+            if (a.distance > r) return;
+            inA = a.distance < -r;
+        }
+        if (!inB)
+        {
+            b = B_.closest(pB_, c);
+            ++queries;
+            if (b.distance > r) return;
+            inB = b.distance < -r;
+        }
+        if (inA && inB)
+        {
+            const double v = s*s*s;
+            sum.volume += v;
+            sum.first += v*c;
+            sum.cells.emplace_back(c, s);
+            return;
+        }
+        if (level < maxLevel_)
+        {
+            const double h = 0.5*s;
+            for (int k = 0; k < 8; ++k)
+            {
+                const vec3 off((k & 1)*h, ((k >> 1) & 1)*h, ((k >> 2) & 1)*h);
+                visit(lo + off, h, level + 1, inA, inB, sum);
+            }
+            return;
+        }
+        leaf(c, s, inA, a, inB, b, sum);
+    }
+
+    void leaf
+    (
+        const vec3& c, double s,
+        bool inA, const surfacePoint& a, bool inB, const surfacePoint& b,
+        baseCellSum& sum
+    )
+    {
+        // Tangent-plane models of the two signed distances in the leaf
+        const int n = virtualMeshOverlap::nSub;
+        const double ds = s/n;
+        int count = 0;
+        vec3 first = vec3::Zero();
+        for (int i = 0; i < n; ++i)
+        {
+            for (int j = 0; j < n; ++j)
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    const vec3 x = c + ds*vec3(i + 0.5 - 0.5*n, j + 0.5 - 0.5*n, k + 0.5 - 0.5*n);
+                    const bool inside =
+                        (inA || a.distance + a.normal.dot(x - c) <= 0)
+                     && (inB || b.distance + b.normal.dot(x - c) <= 0);
+                    if (inside)
+                    {
+                        ++count;
+                        first += x;
+                    }
+                }
+            }
+        }
+        if (count == 0)
+        {
+            return;
+        }
+        const double v = s*s*s*count/double(n*n*n);
+        sum.volume += v;
+        sum.first += (v/count)*first;
+        sum.cells.emplace_back(c, 0);       // size 0: a leaf, one pixel
+
+        if (inA || inB)
+        {
+            return;
+        }
+        sum.normalSum += v*(a.normal - b.normal);
+
+        // Edge point: where the two tangent planes meet, nearest the centre
+        const double g = a.normal.dot(b.normal);
+        if (1 - g*g > 1e-8)
+        {
+            const double alpha = (-a.distance + g*b.distance)/(1 - g*g);
+            const double beta = (-b.distance + g*a.distance)/(1 - g*g);
+            const vec3 x = c + alpha*a.normal + beta*b.normal;
+            if ((x - c).cwiseAbs().maxCoeff() <= 0.5*s)
+            {
+                sum.edgePoints.push_back(x);
+            }
+        }
+    }
+};
+
+
+// Union-find over the base cells that hold overlap
+struct disjointSets
+{
+    std::vector<int> parent;
+    explicit disjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int i) { while (parent[i] != i) i = parent[i] = parent[parent[i]]; return i; }
+    void join(int i, int j) { parent[find(i)] = find(j); }
+};
+
+
+vec3 regionNormal
+(
+    const std::vector<vec3>& edgePoints,
+    const vec3& normalSum,
+    const vec3& centreLine
+)
+{
+    // The orientation reference: continuous in the pose
+    vec3 ref = normalSum.norm() > 0 ? vec3(normalSum.normalized())
+        : centreLine.norm() > 0 ? vec3(centreLine.normalized()) : vec3(vec3::UnitX());
+
+    if (edgePoints.size() >= 3)
+    {
+        vec3 mean = vec3::Zero();
+        for (const vec3& p : edgePoints) mean += p;
+        mean /= double(edgePoints.size());
+        mat3 C = mat3::Zero();
+        for (const vec3& p : edgePoints) C += (p - mean)*(p - mean).transpose();
+        Eigen::SelfAdjointEigenSolver<mat3> eig(C);
+        const vec3 l = eig.eigenvalues();
+        if (l(2) > 0 && l(1) > 1e-6*l(2) && l(0) < 0.25*l(1))
+        {
+            vec3 n = eig.eigenvectors().col(0).normalized();
+            return n.dot(ref) < 0 ? vec3(-n) : n;
+        }
+    }
+    return ref;
+}
+
+
+double projectedArea
+(
+    const std::vector<std::pair<vec3, double>>& cells,
+    const vec3& n,
+    double pixel
+)
+{
+    const vec3 t1 = n.unitOrthogonal();
+    const vec3 t2 = n.cross(t1);
+    std::unordered_set<long long> pixels;
+    auto mark = [&](long i, long j)
+    {
+        pixels.insert((static_cast<long long>(i) << 32) ^ static_cast<long long>(j & 0xffffffff));
+    };
+    for (const auto& cs : cells)
+    {
+        const double u = cs.first.dot(t1)/pixel, w = cs.first.dot(t2)/pixel;
+        if (cs.second == 0)
+        {
+            mark(std::lround(u), std::lround(w));
+            continue;
+        }
+        const long half = std::lround(0.5*cs.second/pixel);
+        for (long i = -half; i <= half; ++i)
+        {
+            for (long j = -half; j <= half; ++j)
+            {
+                mark(std::lround(u) + i, std::lround(w) + j);
+            }
+        }
+    }
+    return double(pixels.size())*pixel*pixel;
+}
+
+} // End anonymous namespace
+
+
+contactGeometry virtualMeshOverlap::evaluate
+(
+    const shape& A, const bodyPose& pA,
+    const shape& B, const bodyPose& pB,
+    const overlapSettings& settings
+) const
+{
+    const double h = settings.h;
+    const int L = settings.level;
+    if (!(std::isfinite(h) && h > 0))
+    {
+        throw coreError("virtualMesh: the base cell size h must be positive, not " + std::to_string(h));
+    }
+    if (L < 0 || L > 10)
+    {
+        throw coreError("virtualMesh: the level must be in [0, 10], not " + std::to_string(L));
+    }
+
+    contactGeometry g;
+    const axisAlignedBox box = A.worldBox(pA).intersection(B.worldBox(pB));
+    if (box.empty())
+    {
+        return g;
+    }
+
+    cellIndex lo, hi;
+    for (int d = 0; d < 3; ++d)
+    {
+        lo[d] = long(std::floor(box.min[d]/h));
+        hi[d] = long(std::floor(box.max[d]/h));
+    }
+
+    octreeWalk walk(A, pA, B, pB, L);
+    std::map<cellIndex, baseCellSum> sums;
+    for (long i = lo[0]; i <= hi[0]; ++i)
+    {
+        for (long j = lo[1]; j <= hi[1]; ++j)
+        {
+            for (long k = lo[2]; k <= hi[2]; ++k)
+            {
+                baseCellSum s;
+                walk.visit(vec3(i*h, j*h, k*h), h, 0, false, false, s);
+                if (s.volume > 0)
+                {
+                    sums.emplace(cellIndex{i, j, k}, std::move(s));
+                }
+            }
+        }
+    }
+    g.queries = walk.queries;
+    g.leaves = walk.leaves;
+    if (sums.empty())
+    {
+        return g;
+    }
+
+    // Regions: base cells joined across faces
+    std::vector<const cellIndex*> keys;
+    std::map<cellIndex, int> id;
+    for (const auto& e : sums)
+    {
+        id[e.first] = int(keys.size());
+        keys.push_back(&e.first);
+    }
+    disjointSets sets(int(keys.size()));
+    for (const auto& e : id)
+    {
+        for (int d = 0; d < 3; ++d)
+        {
+            cellIndex nb = e.first;
+            ++nb[d];
+            const auto it = id.find(nb);
+            if (it != id.end()) sets.join(e.second, it->second);
+        }
+    }
+
+    std::map<int, baseCellSum> regions;
+    for (const auto& e : sums)
+    {
+        baseCellSum& r = regions[sets.find(id[e.first])];
+        const baseCellSum& s = e.second;
+        r.volume += s.volume;
+        r.first += s.first;
+        r.normalSum += s.normalSum;
+        r.edgePoints.insert(r.edgePoints.end(), s.edgePoints.begin(), s.edgePoints.end());
+        r.cells.insert(r.cells.end(), s.cells.begin(), s.cells.end());
+    }
+
+    const vec3 centreLine = pB.position() - pA.position();
+    const double pixel = h/double(1L << L);
+    for (const auto& e : regions)
+    {
+        const baseCellSum& r = e.second;
+        contactRegion cr;
+        cr.volume = r.volume;
+        cr.point = r.first/r.volume;
+        cr.normal = regionNormal(r.edgePoints, r.normalSum, centreLine);
+        cr.area = projectedArea(r.cells, cr.normal, pixel);
+        g.regions.push_back(cr);
+    }
+    // A deterministic order: largest region first
+    std::sort
+    (
+        g.regions.begin(), g.regions.end(),
+        [](const contactRegion& x, const contactRegion& y){ return x.volume > y.volume; }
+    );
+    return g;
+}
+
+} // End namespace immersedDEM
