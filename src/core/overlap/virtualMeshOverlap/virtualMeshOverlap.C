@@ -100,36 +100,65 @@ public:
         baseCellSum& sum
     )
     {
-        // Tangent-plane models of the two signed distances in the leaf
+        // Tangent-plane models of the two signed distances in the leaf,
+        // integrated exactly along columns parallel to the axis the planes
+        // face most, at n x n column centres: exact for a plane facing that
+        // axis (no quantisation where an overlap is a few leaves thick)
+        const vec3 nMax = (inA ? vec3::Zero() : vec3(a.normal.cwiseAbs()))
+            .cwiseMax(inB ? vec3::Zero() : vec3(b.normal.cwiseAbs()));
+        int ax = 0;
+        nMax.maxCoeff(&ax);
+        const int u = (ax + 1) % 3, w = (ax + 2) % 3;
+
         const int n = virtualMeshOverlap::nSub;
         const double ds = s/n;
-        int count = 0;
+        double volume = 0;
         vec3 first = vec3::Zero();
         for (int i = 0; i < n; ++i)
         {
             for (int j = 0; j < n; ++j)
             {
-                for (int k = 0; k < n; ++k)
+                vec3 x = c;
+                x[u] += (i + 0.5 - 0.5*n)*ds;
+                x[w] += (j + 0.5 - 0.5*n)*ds;
+                double lo = -0.5*s, hi = 0.5*s;
+                // d + n.(x - c) + n_ax t <= 0, t the offset along the column
+                auto clip = [&](const surfacePoint& sp)
                 {
-                    const vec3 x = c + ds*vec3(i + 0.5 - 0.5*n, j + 0.5 - 0.5*n, k + 0.5 - 0.5*n);
-                    const bool inside =
-                        (inA || a.distance + a.normal.dot(x - c) <= 0)
-                     && (inB || b.distance + b.normal.dot(x - c) <= 0);
-                    if (inside)
+                    const double q = -(sp.distance + sp.normal.dot(x - c));
+                    const double na = sp.normal[ax];
+                    if (std::abs(na) < 1e-12)
                     {
-                        ++count;
-                        first += x;
+                        if (q < 0) hi = lo;
                     }
+                    else if (na > 0)
+                    {
+                        hi = std::min(hi, q/na);
+                    }
+                    else
+                    {
+                        lo = std::max(lo, q/na);
+                    }
+                };
+                if (!inA) clip(a);
+                if (!inB) clip(b);
+                if (hi > lo)
+                {
+                    const double v = (hi - lo)*ds*ds;
+                    volume += v;
+                    vec3 xm = x;
+                    xm[ax] += 0.5*(lo + hi);
+                    first += v*xm;
                 }
             }
         }
-        if (count == 0)
+        if (volume <= 0)
         {
             return;
         }
-        const double v = s*s*s*count/double(n*n*n);
+        const double v = volume;
         sum.volume += v;
-        sum.first += (v/count)*first;
+        sum.first += first;
         sum.cells.emplace_back(c, 0);       // size 0: a leaf, one pixel
 
         if (inA || inB)

@@ -1,0 +1,213 @@
+#include "overlapEngine.H"
+#include "sphereOverlap.H"
+#include "virtualMeshOverlap.H"
+#include "sphereShape.H"
+#include "triangleMeshShape.H"
+#include "primitiveMeshes.H"
+#include "coreError.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace immersedDEM;
+
+namespace
+{
+
+const double R = 0.005, d = 0.01, h = d/20;
+
+double angleDeg(const vec3& a, const vec3& b)
+{
+    return std::acos(std::max(-1.0, std::min(1.0, a.normalized().dot(b.normalized()))))*180/M_PI;
+}
+
+// Two spheres overlapping by a fraction of the diameter along a skew line
+struct spherePair
+{
+    vec3 c2, c1;    // c1 is made from c2
+    explicit spherePair(double frac)
+    :
+        c2(0.0013, 0.0021, 0.0007),
+        c1(c2 - (d - frac*d)*vec3(1, 2, 3).normalized())
+    {}
+};
+
+} // End anonymous namespace
+
+
+TEST(sphereOverlap, lensOfEqualSpheresMatchesClosedForm)
+{
+    // Equal balls at distance s: V = pi (4R + s)(2R - s)^2 / 12
+    for (double s : {0.002, 0.006, 0.0099})
+    {
+        const auto g = sphereOverlap::lens(vec3::Zero(), R, vec3(s, 0, 0), R);
+        ASSERT_EQ(g.regions.size(), 1u);
+        EXPECT_NEAR(g.volume(), M_PI*(4*R + s)*std::pow(2*R - s, 2)/12, 1e-18);
+        EXPECT_NEAR(g.regions[0].point.x(), s/2, 1e-15);
+        EXPECT_NEAR(g.regions[0].area, M_PI*(R*R - s*s/4), 1e-15);
+        EXPECT_EQ(g.regions[0].normal, vec3::UnitX());
+    }
+    EXPECT_TRUE(sphereOverlap::lens(vec3::Zero(), R, vec3(2*R, 0, 0), R).regions.empty());
+}
+
+
+TEST(sphereOverlap, needsTwoSpheres)
+{
+    const sphereShape s(R);
+    const triangleMeshShape box(primitiveMeshes::box(vec3::Constant(R)), "box");
+    EXPECT_THROW(sphereOverlap().evaluate(s, bodyPose(), box, bodyPose(), {h, 4}), coreError);
+}
+
+
+TEST(overlapEngine, selectorListsValidMethods)
+{
+    EXPECT_EQ(overlapEngine::New("virtualMesh")->type(), "virtualMesh");
+    EXPECT_EQ(overlapEngine::New("sphere")->type(), "sphere");
+    try
+    {
+        overlapEngine::New("octree");
+        FAIL() << "no error";
+    }
+    catch (const coreError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("Unknown overlap method 'octree'"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("virtualMesh"), std::string::npos);
+    }
+}
+
+
+class virtualMeshSphereSphere : public ::testing::TestWithParam<double> {};
+
+TEST_P(virtualMeshSphereSphere, level4MatchesAnalyticLens)
+{
+    const spherePair p(GetParam());
+    const sphereShape s(R);
+    const auto g = virtualMeshOverlap().evaluate
+    (
+        s, bodyPose(p.c1, quat::Identity()), s, bodyPose(p.c2, quat::Identity()), {h, 4}
+    );
+    const auto ref = sphereOverlap::lens(p.c1, R, p.c2, R);
+    ASSERT_EQ(g.regions.size(), 1u);
+    EXPECT_NEAR(g.volume()/ref.volume(), 1, 0.005);
+    EXPECT_LT(angleDeg(g.regions[0].normal, ref.regions[0].normal), 0.5);
+    EXPECT_LT((g.regions[0].point - ref.regions[0].point).norm(), h/16);
+    EXPECT_NEAR(g.regions[0].area/ref.regions[0].area, 1, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P
+(
+    overlapFractions, virtualMeshSphereSphere,
+    ::testing::Values(0.005, 0.01, 0.02, 0.035, 0.05)
+);
+
+
+TEST(virtualMesh, costGrowsLikeASurface)
+{
+    const spherePair p(0.02);
+    const sphereShape s(R);
+    long previous = 0;
+    for (int L = 0; L <= 5; ++L)
+    {
+        const auto g = virtualMeshOverlap().evaluate
+        (
+            s, bodyPose(p.c1, quat::Identity()), s, bodyPose(p.c2, quat::Identity()), {h, L}
+        );
+        if (L >= 2)
+        {
+            EXPECT_LT(double(g.queries)/previous, 4.5) << "level " << L;
+        }
+        previous = g.queries;
+    }
+}
+
+
+TEST(virtualMesh, rigidMotionOfThePairAndSwap)
+{
+    // A box pressed into a rotated box: move and rotate the pair as a whole
+    const triangleMeshShape A(primitiveMeshes::box(vec3(0.004, 0.003, 0.002)), "A");
+    const triangleMeshShape B(primitiveMeshes::box(vec3(0.002, 0.002, 0.002)), "B");
+    // Poses place the shapes as given (their principal frames may be permuted)
+    const bodyPose pA = A.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    const bodyPose pB = B.poseFromFilePlacement
+    (
+        bodyPose::axisAngle(vec3(0, 0, 1), 0.4), vec3(0.0005, 0.0002, 0.0037)
+    );
+    const virtualMeshOverlap vm;
+    const auto g0 = vm.evaluate(A, pA, B, pB, {h, 4});
+    ASSERT_EQ(g0.regions.size(), 1u);
+    const bodyPose M(vec3(0.0123, -0.0071, 0.0033), bodyPose::axisAngle(vec3(1, -2, 0.5), 1.1));
+    const auto g1 = vm.evaluate(A, M*pA, B, M*pB, {h, 4});
+    ASSERT_EQ(g1.regions.size(), 1u);
+    EXPECT_NEAR(g1.volume()/g0.volume(), 1, 0.005);
+    EXPECT_LT(angleDeg(g1.regions[0].normal, M.vectorToWorld(g0.regions[0].normal)), 1.0);
+    EXPECT_LT((g1.regions[0].point - M.toWorld(g0.regions[0].point)).norm(), h/8);
+
+    const auto gs = vm.evaluate(B, pB, A, pA, {h, 4});
+    ASSERT_EQ(gs.regions.size(), 1u);
+    EXPECT_NEAR(gs.volume()/g0.volume(), 1, 1e-12);
+    EXPECT_LT(angleDeg(gs.regions[0].normal, -g0.regions[0].normal), 1e-6);
+    // B's bottom face (rotated, within A's top face) 0.3 mm into A: the
+    // overlap is a prism of that depth and the normal +z from A to B
+    EXPECT_NEAR(g0.volume()/(0.004*0.004*0.0003), 1, 0.005);
+    EXPECT_LT(angleDeg(g0.regions[0].normal, vec3::UnitZ()), 0.5);
+}
+
+
+TEST(virtualMesh, boxIntoBoxExactVolume)
+{
+    // B's bottom 0.3 mm pushed into A's top face; the overlap is a box
+    const triangleMeshShape A(primitiveMeshes::box(vec3(0.004, 0.004, 0.002)), "A");
+    const triangleMeshShape B(primitiveMeshes::box(vec3(0.002, 0.0015, 0.002)), "B");
+    const double depth = 0.0003;
+    const bodyPose pA = A.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    const bodyPose pB = B.poseFromFilePlacement
+    (
+        quat::Identity(), vec3(0.0004, -0.0003, 0.002 + 0.002 - depth)
+    );
+    const auto g = virtualMeshOverlap().evaluate(A, pA, B, pB, {h, 4});
+    ASSERT_EQ(g.regions.size(), 1u);
+    EXPECT_NEAR(g.volume()/(0.004*0.003*depth), 1, 0.005);
+    EXPECT_LT(angleDeg(g.regions[0].normal, vec3::UnitZ()), 0.5);
+    EXPECT_NEAR(g.regions[0].point.z(), 0.002 - depth/2, h/16);
+    EXPECT_NEAR(g.regions[0].area/(0.004*0.003), 1, 0.1);
+}
+
+
+TEST(virtualMesh, twoProngsGiveTwoRegions)
+{
+    // A U-shaped block whose two prongs dip into a slab: two separate boxes
+    const std::vector<Eigen::Vector2d> U
+    {
+        {0, 0}, {0.012, 0}, {0.012, 0.008}, {0.009, 0.008}, {0.009, 0.003},
+        {0.003, 0.003}, {0.003, 0.008}, {0, 0.008}
+    };
+    const triangleMeshShape u(primitiveMeshes::extrudedPolygon(U, 0.004), "U");
+    const triangleMeshShape slab(primitiveMeshes::box(vec3(0.01, 0.002, 0.01)), "slab");
+    // Put the U (file frame) with prong tips at y = 0.008 into the slab
+    // whose bottom face is at y = 0.0075: each prong overlaps 3 x 0.5 x 4 mm
+    const bodyPose pU = u.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    const bodyPose pS = slab.poseFromFilePlacement
+    (
+        quat::Identity(), vec3(0.006, 0.0075 + 0.002, 0.002)
+    );
+    const auto g = virtualMeshOverlap().evaluate(u, pU, slab, pS, {h, 4});
+    ASSERT_EQ(g.regions.size(), 2u);
+    for (const contactRegion& r : g.regions)
+    {
+        EXPECT_NEAR(r.volume/(0.003*0.0005*0.004), 1, 0.01);
+        EXPECT_LT(angleDeg(r.normal, vec3::UnitY()), 0.5);
+    }
+}
+
+
+TEST(virtualMesh, apartGivesNothingAndBadSettingsThrow)
+{
+    const sphereShape s(R);
+    const virtualMeshOverlap vm;
+    const auto g = vm.evaluate(s, bodyPose(), s, bodyPose(vec3(0.0101, 0, 0), quat::Identity()), {h, 4});
+    EXPECT_TRUE(g.regions.empty());
+    EXPECT_EQ(g.volume(), 0);
+    EXPECT_THROW(vm.evaluate(s, bodyPose(), s, bodyPose(), {0, 4}), coreError);
+    EXPECT_THROW(vm.evaluate(s, bodyPose(), s, bodyPose(), {h, -1}), coreError);
+}
