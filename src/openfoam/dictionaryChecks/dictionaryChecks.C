@@ -109,3 +109,21 @@ Foam::word Foam::immersedDEMChecks::oneOfOrDefault
 {
     return dict.found(key, keyType::LITERAL) ? oneOf(dict, key, valid) : def;
 }
+
+
+const Foam::dictionary& Foam::immersedDEMChecks::subDictEntry
+(
+    const dictionary& parent,
+    const entry& e,
+    const char* what
+)
+{
+    if (!e.isDict())
+    {
+        FatalIOErrorInFunction(parent)
+            << "Entry '" << e.keyword() << "' in " << parent.name()
+            << " must be a dictionary of " << what << nl
+            << exit(FatalIOError);
+    }
+    return e.dict();
+}

@@ -27,14 +27,7 @@ void Foam::immersedDEMState::readMaterials()
     const dictionary& all = properties_.subDict("materials");
     for (const entry& e : all)
     {
-        if (!e.isDict())
-        {
-            FatalIOErrorInFunction(all)
-                << "Entry '" << e.keyword() << "' in " << all.name()
-                << " must be a dictionary of material properties" << nl
-                << exit(FatalIOError);
-        }
-        const dictionary& d = e.dict();
+        const dictionary& d = immersedDEMChecks::subDictEntry(all, e, "material properties");
         immersedDEMChecks::allowOnly(d, {"youngsModulus", "poissonsRatio"});
         materials_.push_back
         ({
@@ -58,14 +51,7 @@ void Foam::immersedDEMState::readBodies()
 
     for (const entry& e : all)
     {
-        if (!e.isDict())
-        {
-            FatalIOErrorInFunction(all)
-                << "Entry '" << e.keyword() << "' in " << all.name()
-                << " must be a dictionary describing a body" << nl
-                << exit(FatalIOError);
-        }
-        const dictionary& d = e.dict();
+        const dictionary& d = immersedDEMChecks::subDictEntry(all, e, "a body's description");
         body b;
         b.name = e.keyword();
 

@@ -52,19 +52,25 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
 }
 
 
+Foam::tmp<Foam::volScalarField::Internal>
+Foam::fv::immersedBoundaryForce::penaltyCoefficient() const
+{
+    const dimensionedScalar K
+    (
+        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
+    );
+    return K*state_.lambda()();
+}
+
+
 void Foam::fv::immersedBoundaryForce::addSup
 (
     fvMatrix<vector>& eqn,
     const label fieldi
 )
 {
-    const volVectorField& U = eqn.psi();
-    const dimensionedScalar K
-    (
-        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
-    );
-    const volScalarField::Internal KLambda(K*state_.lambda()());
-    eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, U);
+    const volScalarField::Internal KLambda(penaltyCoefficient());
+    eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, eqn.psi());
 }
 
 
@@ -75,11 +81,6 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
-    const volVectorField& U = eqn.psi();
-    const dimensionedScalar K
-    (
-        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
-    );
-    const volScalarField::Internal rhoKLambda(rho()*K*state_.lambda()());
-    eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, U);
+    const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
+    eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
 }
