@@ -7,6 +7,8 @@
 #include "primitiveMeshes.H"
 #include "testHelpers.H"
 
+#include <thread>
+
 using namespace immersedDEM;
 using namespace immersedDEM::test;
 
@@ -236,8 +238,10 @@ TEST(shapeQueries, extrudedLSignedDistanceExact)
     // In the notch, the nearest feature is the reflex edge x = y = 1
     EXPECT_NEAR(sdFile(s, vec3(1.3, 1.4, 0.2)), 0.3, 1e-12);
     EXPECT_NEAR(sdFile(s, vec3(1.3, 1.3, 0.2)), 0.3, 1e-12);
-    // Inside near the reflex edge: the nearest face is x = 1 or y = 1
-    EXPECT_NEAR(sdFile(s, vec3(0.9, 0.8, 0.35)), -0.1, 1e-12);
+    // Inside near the reflex edge: nearest is the edge itself, or a face
+    EXPECT_NEAR(sdFile(s, vec3(0.9, 0.8, 0.35)), -std::sqrt(0.05), 1e-12);
+    EXPECT_NEAR(sdFile(s, vec3(1.2, 0.8, 0.35)), -0.2, 1e-12);
+    EXPECT_NEAR(sdFile(s, vec3(0.8, 1.1, 0.35)), -0.2, 1e-12);
 }
 
 
@@ -403,5 +407,87 @@ TEST(shapeQueries, sphereVersusFineIcosphere)
         EXPECT_NEAR(dm, ds, 1e-3);
         EXPECT_GE(dm, ds - 1e-15);   // the mesh lies inside the sphere
         if (std::abs(ds) > 1e-3) EXPECT_EQ(mesh.inside(x), sphere.inside(x));
+    }
+}
+
+
+TEST(shapeQueries, concurrentQueriesMatchSerial)
+{
+    // Queries are const and may run concurrently
+    const triangleMeshShape& s = LShape();
+    std::mt19937 gen(8);
+    std::vector<vec3> pts(4000);
+    for (vec3& p : pts) p = randomVec(gen, -2.5, 2.5);
+    std::vector<double> serial(pts.size());
+    std::vector<char> serialIn(pts.size());
+    for (size_t i = 0; i < pts.size(); ++i)
+    {
+        serial[i] = s.signedDistance(pts[i]);
+        serialIn[i] = s.inside(pts[i]);
+    }
+    const int nThreads = 4;
+    std::vector<double> par(pts.size());
+    std::vector<char> parIn(pts.size());
+    std::vector<std::thread> threads;
+    for (int t = 0; t < nThreads; ++t)
+    {
+        threads.emplace_back([&, t]
+        {
+            for (size_t i = t; i < pts.size(); i += nThreads)
+            {
+                par[i] = s.signedDistance(pts[i]);
+                parIn[i] = s.inside(pts[i]);
+            }
+        });
+    }
+    for (std::thread& th : threads) th.join();
+    int nIn = 0;
+    for (size_t i = 0; i < pts.size(); ++i)
+    {
+        EXPECT_EQ(par[i], serial[i]);
+        EXPECT_EQ(parIn[i], serialIn[i]);
+        nIn += serialIn[i];
+    }
+    EXPECT_GT(nIn, 50);
+}
+
+
+TEST(shapeQueries, pseudoNormalsIndependentOfHeapContents)
+{
+    // Regression: the edge pseudo-normals were summed into values the hash
+    // map left uninitialised, so freed memory (here filled with large
+    // numbers) turned signs near edges wrong. Build after poisoning the heap.
+    for (int round = 0; round < 3; ++round)
+    {
+        {
+            std::vector<std::unique_ptr<double[]>> junk;
+            for (int i = 0; i < 20000; ++i)
+            {
+                const int n = 2 + i % 10;
+                junk.emplace_back(new double[n]);
+                for (int k = 0; k < n; ++k) junk.back()[k] = (k % 2 ? -1e30 : 1e30);
+            }
+        }
+        const triangleMeshShape s(primitiveMeshes::box(boxH), "box");
+        std::mt19937 gen(9 + round);
+        std::uniform_real_distribution<double> u(-1, 1);
+        for (int c = 0; c < 8; ++c)
+        {
+            const vec3 sg((c & 1) ? 1 : -1, (c & 2) ? 1 : -1, (c & 4) ? 1 : -1);
+            const vec3 corner = sg.cwiseProduct(boxH);
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                // Outside, nearest to the edge along 'axis' through this corner
+                vec3 x = corner;
+                x[axis] *= u(gen);
+                vec3 dir = sg; dir[axis] = 0;
+                x += 0.01*dir;
+                const double exact = boxSignedDistance(x, vec3::Zero(), boxH);
+                EXPECT_NEAR(sdFile(s, x), exact, 1e-12) << x.transpose();
+                EXPECT_GT(sdFile(s, x), 0) << x.transpose();
+            }
+            const vec3 x = corner + 0.01*sg;
+            EXPECT_NEAR(sdFile(s, x), 0.01*std::sqrt(3.0), 1e-12);
+        }
     }
 }

@@ -341,6 +341,15 @@ triangleSoup surfaceFileIO::read(const std::string& fileName)
 void surfaceFileIO::write(const std::string& fileName, const triangleSoup& soup, bool ascii)
 {
     const std::string ext = lowerExtension(fileName);
+    // Refuse an unknown extension before creating the temporary
+    if (ext != "obj" && ext != "stl")
+    {
+        throw coreError
+        (
+            "Surface file \"" + fileName + "\": unknown extension '" + ext
+          + "'; valid extensions are .stl and .obj"
+        );
+    }
     // Write a temporary and rename: a reader never sees a half-written file
     const std::string tmp = fileName + ".tmp";
     {

@@ -156,7 +156,8 @@ triangleMeshShape::triangleMeshShape
             const vec3 e2 = (body_.points[f[(k + 2) % 3]] - p0).normalized();
             const double angle = std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
             vertexNormal_[f[k]] += angle*n;
-            edgeSum[edgeKey(f[k], f[(k + 1) % 3])] += n;
+            // Not operator[]: it would leave a new (Eigen) vec3 uninitialised
+            edgeSum.emplace(edgeKey(f[k], f[(k + 1) % 3]), vec3::Zero()).first->second += n;
         }
     }
     for (vec3& n : vertexNormal_) n.normalize();
