@@ -17,4 +17,16 @@ surfacePoint shape::closest(const bodyPose& pose, const vec3& p) const
     return sp;
 }
 
+
+surfacePoint shape::closest
+(
+    const bodyPose& pose, const vec3& p, double distanceBound
+) const
+{
+    surfacePoint sp = closest(pose.toBody(p), distanceBound);
+    sp.point = pose.toWorld(sp.point);
+    sp.normal = pose.vectorToWorld(sp.normal);
+    return sp;
+}
+
 } // End namespace immersedDEM

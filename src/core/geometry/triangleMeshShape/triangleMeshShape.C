@@ -2,6 +2,7 @@
 #include "closedSurfaceCheck.H"
 #include "coreError.H"
 #include "surfaceFileIO.H"
+#include "triangleBVH.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -11,6 +12,7 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace immersedDEM
@@ -58,52 +60,6 @@ struct triangleMeshShape::search
 
 namespace
 {
-
-// Closest point of triangle abc to p, and which feature it lies on:
-// 0 face interior, 1..3 corners a, b, c, 4..6 edges ab, bc, ca.
-// The regions follow the Voronoi regions of the triangle's features.
-vec3 closestOnTriangle
-(
-    const vec3& p, const vec3& a, const vec3& b, const vec3& c, int& region
-)
-{
-    const vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) { region = 1; return a; }
-
-    const vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) { region = 2; return b; }
-
-    const double vc = d1*d4 - d3*d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    {
-        region = 4;
-        return a + (d1/(d1 - d3))*ab;
-    }
-
-    const vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) { region = 3; return c; }
-
-    const double vb = d5*d2 - d1*d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    {
-        region = 6;
-        return a + (d2/(d2 - d6))*ac;
-    }
-
-    const double va = d3*d6 - d5*d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    {
-        region = 5;
-        return b + ((d4 - d3)/((d4 - d3) + (d5 - d6)))*(c - b);
-    }
-
-    const double denom = 1.0/(va + vb + vc);
-    region = 0;
-    return a + ab*(vb*denom) + ac*(vc*denom);
-}
 
 std::uint64_t edgeKey(int a, int b)
 {
@@ -171,6 +127,7 @@ triangleMeshShape::triangleMeshShape
     }
 
     search_.reset(new search(body_));
+    bvh_.reset(new triangleBVH(body_));
 }
 
 
@@ -207,15 +164,32 @@ bool triangleMeshShape::inside(const vec3& p) const
 }
 
 
-surfacePoint triangleMeshShape::closestOnFace(const vec3& p, int fi) const
+surfacePoint triangleMeshShape::closest(const vec3& p) const
 {
+    return closestWithin(p, std::numeric_limits<double>::max());
+}
+
+
+surfacePoint triangleMeshShape::closest(const vec3& p, double distanceBound) const
+{
+    // Slack for round-off in the caller's bound
+    const double b = distanceBound*(1 + 1e-9) + 1e-12*boundingRadius_;
+    return closestWithin(p, b*b);
+}
+
+
+surfacePoint triangleMeshShape::closestWithin(const vec3& p, double maxDistSqr) const
+{
+    triangleBVH::hit h = bvh_->closest(p, maxDistSqr);
+    if (h.face < 0)
+    {
+        h = bvh_->closest(p);
+    }
+    const int fi = h.face;
+    const int region = h.feature;
     const triFace& f = body_.faces[fi];
-    int region = 0;
     surfacePoint sp;
-    sp.point = closestOnTriangle
-    (
-        p, body_.points[f[0]], body_.points[f[1]], body_.points[f[2]], region
-    );
+    sp.point = h.point;
     const vec3 pseudo =
         region == 0 ? faceNormal_[fi]
       : region <= 3 ? vertexNormal_[f[region - 1]]
@@ -238,13 +212,6 @@ surfacePoint triangleMeshShape::closestOnFace(const vec3& p, int fi) const
         sp.normal = pseudo;
     }
     return sp;
-}
-
-
-surfacePoint triangleMeshShape::closest(const vec3& p) const
-{
-    const auto cp = search_->t.closest_point_and_primitive(search::point(p.x(), p.y(), p.z()));
-    return closestOnFace(p, int(cp.second.idx()));
 }
 
 

@@ -48,9 +48,13 @@ public:
         A_(A), pA_(pA), B_(B), pB_(pB), maxLevel_(L)
     {}
 
+    // boundA, boundB: upper bounds of the distances to the surfaces from
+    // the parent's queries (the distance is 1-Lipschitz), to prune the
+    // meshes' searches
     void visit
     (
-        const vec3& lo, double s, int level, bool inA, bool inB, baseCellSum& sum
+        const vec3& lo, double s, int level, bool inA, bool inB,
+        double boundA, double boundB, baseCellSum& sum
     )
     {
         ++leaves;
@@ -60,14 +64,14 @@ public:
         surfacePoint a, b;
         if (!inA)
         {
-            a = A_.closest(pA_, c);
+            a = A_.closest(pA_, c, boundA);
             ++queries;
             if (a.distance > r) return;
             inA = a.distance < -r;
         }
         if (!inB)
         {
-            b = B_.closest(pB_, c);
+            b = B_.closest(pB_, c, boundB);
             ++queries;
             if (b.distance > r) return;
             inB = b.distance < -r;
@@ -83,10 +87,13 @@ public:
         if (level < maxLevel_)
         {
             const double h = 0.5*s;
+            // A child's centre is r/2 from this centre
+            const double bA = inA ? 0 : std::abs(a.distance) + 0.5*r;
+            const double bB = inB ? 0 : std::abs(b.distance) + 0.5*r;
             for (int k = 0; k < 8; ++k)
             {
                 const vec3 off((k & 1)*h, ((k >> 1) & 1)*h, ((k >> 2) & 1)*h);
-                visit(lo + off, h, level + 1, inA, inB, sum);
+                visit(lo + off, h, level + 1, inA, inB, bA, bB, sum);
             }
             return;
         }
@@ -301,7 +308,8 @@ contactGeometry virtualMeshOverlap::evaluate
             for (long k = lo[2]; k <= hi[2]; ++k)
             {
                 baseCellSum s;
-                walk.visit(vec3(i*h, j*h, k*h), h, 0, false, false, s);
+                const double noBound = std::numeric_limits<double>::max();
+                walk.visit(vec3(i*h, j*h, k*h), h, 0, false, false, noBound, noBound, s);
                 if (s.volume > 0)
                 {
                     sums.emplace(cellIndex{i, j, k}, std::move(s));
