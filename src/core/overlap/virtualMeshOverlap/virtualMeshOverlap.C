@@ -33,30 +33,45 @@ class octreeWalk
     const bodyPose& pA_;
     const shape& B_;
     const bodyPose& pB_;
+    const double h_;
     const int maxLevel_;
+
+    cellIndex baseIndex(const vec3& lo) const
+    {
+        return {std::lround(lo.x()/h_), std::lround(lo.y()/h_), std::lround(lo.z()/h_)};
+    }
 
 public:
 
     long queries = 0;
     long leaves = 0;
 
+    //- Sums per base cell (size h), by lattice index
+    std::map<cellIndex, baseCellSum> sums;
+
     octreeWalk
     (
-        const shape& A, const bodyPose& pA, const shape& B, const bodyPose& pB, int L
+        const shape& A, const bodyPose& pA, const shape& B, const bodyPose& pB,
+        double h, int L
     )
     :
-        A_(A), pA_(pA), B_(B), pB_(pB), maxLevel_(L)
+        A_(A), pA_(pA), B_(B), pB_(pB), h_(h), maxLevel_(L)
     {}
 
+    // level < 0: coarser than h, above the base cells; sum is then null.
     // boundA, boundB: upper bounds of the distances to the surfaces from
     // the parent's queries (the distance is 1-Lipschitz), to prune the
     // meshes' searches
     void visit
     (
         const vec3& lo, double s, int level, bool inA, bool inB,
-        double boundA, double boundB, baseCellSum& sum
+        double boundA, double boundB, baseCellSum* sum
     )
     {
+        if (level == 0)
+        {
+            sum = &sums[baseIndex(lo)];
+        }
         ++leaves;
         const vec3 c = lo + vec3::Constant(0.5*s);
         const double r = 0.5*std::sqrt(3.0)*s;
@@ -78,10 +93,31 @@ public:
         }
         if (inA && inB)
         {
-            const double v = s*s*s;
-            sum.volume += v;
-            sum.first += v*c;
-            sum.cells.emplace_back(c, s);
+            if (level >= 0)
+            {
+                const double v = s*s*s;
+                sum->volume += v;
+                sum->first += v*c;
+                sum->cells.emplace_back(c, s);
+                return;
+            }
+            // A coarse cell inside both: its base cells, for the regions
+            const long n = 1L << (-level);
+            for (long i = 0; i < n; ++i)
+            {
+                for (long j = 0; j < n; ++j)
+                {
+                    for (long k = 0; k < n; ++k)
+                    {
+                        const vec3 blo = lo + h_*vec3(i, j, k);
+                        baseCellSum& b = sums[baseIndex(blo)];
+                        const double v = h_*h_*h_;
+                        b.volume += v;
+                        b.first += v*(blo + vec3::Constant(0.5*h_));
+                        b.cells.emplace_back(blo + vec3::Constant(0.5*h_), h_);
+                    }
+                }
+            }
             return;
         }
         if (level < maxLevel_)
@@ -97,7 +133,7 @@ public:
             }
             return;
         }
-        leaf(c, s, inA, a, inB, b, sum);
+        leaf(c, s, inA, a, inB, b, *sum);
     }
 
     void leaf
@@ -292,29 +328,40 @@ contactGeometry virtualMeshOverlap::evaluate
         return g;
     }
 
+    // Roots: cells of size H = 2^m h on the same lattice, m chosen so a few
+    // roots cover the box; empty space is then dropped in large pieces
+    const double extent = box.span().maxCoeff();
+    int m = 0;
+    while (m < 20 && h*double(1L << (m + 1)) < extent)
+    {
+        ++m;
+    }
+    const double H = h*double(1L << m);
     cellIndex lo, hi;
     for (int d = 0; d < 3; ++d)
     {
-        lo[d] = long(std::floor(box.min[d]/h));
-        hi[d] = long(std::floor(box.max[d]/h));
+        lo[d] = long(std::floor(box.min[d]/H));
+        hi[d] = long(std::floor(box.max[d]/H));
     }
 
-    octreeWalk walk(A, pA, B, pB, L);
-    std::map<cellIndex, baseCellSum> sums;
+    octreeWalk walk(A, pA, B, pB, h, L);
+    const double noBound = std::numeric_limits<double>::max();
     for (long i = lo[0]; i <= hi[0]; ++i)
     {
         for (long j = lo[1]; j <= hi[1]; ++j)
         {
             for (long k = lo[2]; k <= hi[2]; ++k)
             {
-                baseCellSum s;
-                const double noBound = std::numeric_limits<double>::max();
-                walk.visit(vec3(i*h, j*h, k*h), h, 0, false, false, noBound, noBound, s);
-                if (s.volume > 0)
-                {
-                    sums.emplace(cellIndex{i, j, k}, std::move(s));
-                }
+                walk.visit(vec3(i*H, j*H, k*H), H, -m, false, false, noBound, noBound, nullptr);
             }
+        }
+    }
+    std::map<cellIndex, baseCellSum> sums;
+    for (auto& e : walk.sums)
+    {
+        if (e.second.volume > 0)
+        {
+            sums.emplace(e.first, std::move(e.second));
         }
     }
     g.queries = walk.queries;
