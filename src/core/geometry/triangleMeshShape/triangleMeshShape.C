@@ -2,7 +2,7 @@
 #include "closedSurfaceCheck.H"
 #include "coreError.H"
 #include "surfaceFileIO.H"
-#include "triangleBVH.H"
+#include "surfaceDistance.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -49,24 +49,11 @@ struct triangleMeshShape::search
         }
         t.insert(faces(m).first, faces(m).second, m);
         t.build();
-        t.accelerate_distance_queries();
         sideOf.reset(new side(t));
-        // The first queries build lazy structures: do it now, not concurrently
-        (void)t.closest_point_and_primitive(point(0, 0, 0));
+        // The first query builds lazy structures: do it now, not concurrently
         (void)(*sideOf)(point(0, 0, 0));
     }
 };
-
-
-namespace
-{
-
-std::uint64_t edgeKey(int a, int b)
-{
-    return (std::uint64_t(std::max(a, b)) << 32) | std::uint64_t(std::min(a, b));
-}
-
-} // End anonymous namespace
 
 
 triangleMeshShape::triangleMeshShape
@@ -91,43 +78,8 @@ triangleMeshShape::triangleMeshShape
         boundingRadius_ = std::max(boundingRadius_, p.norm());
     }
 
-    // Angle-weighted pseudo-normals (Baerentzen & Aanaes): the sign of
-    // (p - closest).n is then right whichever feature is closest
-    const size_t nF = body_.faces.size();
-    faceNormal_.resize(nF);
-    edgeNormal_.resize(nF);
-    vertexNormal_.assign(body_.points.size(), vec3::Zero());
-    std::unordered_map<std::uint64_t, vec3> edgeSum;
-    edgeSum.reserve(3*nF);
-    for (size_t fi = 0; fi < nF; ++fi)
-    {
-        const triFace& f = body_.faces[fi];
-        const vec3 n = (body_.points[f[1]] - body_.points[f[0]])
-            .cross(body_.points[f[2]] - body_.points[f[0]]).normalized();
-        faceNormal_[fi] = n;
-        for (int k = 0; k < 3; ++k)
-        {
-            const vec3& p0 = body_.points[f[k]];
-            const vec3 e1 = (body_.points[f[(k + 1) % 3]] - p0).normalized();
-            const vec3 e2 = (body_.points[f[(k + 2) % 3]] - p0).normalized();
-            const double angle = std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
-            vertexNormal_[f[k]] += angle*n;
-            // Not operator[]: it would leave a new (Eigen) vec3 uninitialised
-            edgeSum.emplace(edgeKey(f[k], f[(k + 1) % 3]), vec3::Zero()).first->second += n;
-        }
-    }
-    for (vec3& n : vertexNormal_) n.normalize();
-    for (size_t fi = 0; fi < nF; ++fi)
-    {
-        const triFace& f = body_.faces[fi];
-        for (int k = 0; k < 3; ++k)
-        {
-            edgeNormal_[fi][k] = edgeSum[edgeKey(f[k], f[(k + 1) % 3])].normalized();
-        }
-    }
-
     search_.reset(new search(body_));
-    bvh_.reset(new triangleBVH(body_));
+    distance_.reset(new surfaceDistance(body_));
 }
 
 
@@ -180,35 +132,12 @@ surfacePoint triangleMeshShape::closest(const vec3& p, double distanceBound) con
 
 surfacePoint triangleMeshShape::closestWithin(const vec3& p, double maxDistSqr) const
 {
-    triangleBVH::hit h = bvh_->closest(p, maxDistSqr);
-    if (h.face < 0)
-    {
-        h = bvh_->closest(p);
-    }
-    const int fi = h.face;
-    const int region = h.feature;
-    const triFace& f = body_.faces[fi];
-    surfacePoint sp;
-    sp.point = h.point;
-    const vec3 pseudo =
-        region == 0 ? faceNormal_[fi]
-      : region <= 3 ? vertexNormal_[f[region - 1]]
-      : edgeNormal_[fi][region - 4];
-
-    const vec3 d = p - sp.point;
-    const double dist = d.norm();
-    const double tol = 1e-9*boundingRadius_;
-    if (dist > tol)
-    {
-        const bool in = d.dot(pseudo) < 0;
-        sp.distance = in ? -dist : dist;
-        // Outward normal: along p - closest (its sign fixed by the side)
-        sp.normal = in ? vec3(-d/dist) : vec3(d/dist);
-    }
-    else
+    vec3 pseudo;
+    surfacePoint sp = distance_->closest(p, maxDistSqr, &pseudo);
+    if (std::abs(sp.distance) <= 1e-9*boundingRadius_)
     {
         // On or within round-off of the surface: the exact test decides
-        sp.distance = inside(p) ? -dist : dist;
+        sp.distance = inside(p) ? -std::abs(sp.distance) : std::abs(sp.distance);
         sp.normal = pseudo;
     }
     return sp;

@@ -1,6 +1,9 @@
 #include "overlapEngine.H"
 #include "coreError.H"
+#include "cellsOverlap.H"
+#include "exactOverlap.H"
 #include "sphereOverlap.H"
+#include "uniformOverlap.H"
 #include "virtualMeshOverlap.H"
 
 #include <functional>
@@ -16,7 +19,10 @@ const std::map<std::string, std::function<std::unique_ptr<overlapEngine>()>>& ta
 {
     static const std::map<std::string, std::function<std::unique_ptr<overlapEngine>()>> t
     {
+        {"cells", []{ return std::unique_ptr<overlapEngine>(new cellsOverlap()); }},
+        {"exact", []{ return std::unique_ptr<overlapEngine>(new exactOverlap()); }},
         {"sphere", []{ return std::unique_ptr<overlapEngine>(new sphereOverlap()); }},
+        {"uniform", []{ return std::unique_ptr<overlapEngine>(new uniformOverlap()); }},
         {"virtualMesh", []{ return std::unique_ptr<overlapEngine>(new virtualMeshOverlap()); }}
     };
     return t;

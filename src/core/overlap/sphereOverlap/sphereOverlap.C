@@ -1,5 +1,6 @@
 #include "sphereOverlap.H"
 #include "sphereShape.H"
+#include "halfSpaceShape.H"
 #include "coreError.H"
 
 #include <cmath>
@@ -54,6 +55,32 @@ contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, d
 }
 
 
+contactGeometry sphereOverlap::cap(const vec3& p, const vec3& n, const vec3& c, double R)
+{
+    contactGeometry g;
+    const double dist = n.dot(c - p);
+    if (dist >= R)
+    {
+        return g;
+    }
+    contactRegion r;
+    r.normal = n;
+    if (dist <= -R)
+    {
+        r.volume = 4.0/3.0*M_PI*R*R*R;
+        r.point = c;
+        g.regions.push_back(r);
+        return g;
+    }
+    const double hc = R - dist;
+    r.volume = capVolume(R, hc);
+    r.point = c - 3*std::pow(2*R - hc, 2)/(4*(3*R - hc))*n;
+    r.area = M_PI*(R*R - dist*dist);
+    g.regions.push_back(r);
+    return g;
+}
+
+
 contactGeometry sphereOverlap::evaluate
 (
     const shape& A, const bodyPose& pA,
@@ -63,11 +90,24 @@ contactGeometry sphereOverlap::evaluate
 {
     const auto* a = dynamic_cast<const sphereShape*>(&A);
     const auto* b = dynamic_cast<const sphereShape*>(&B);
+    const auto* wa = dynamic_cast<const halfSpaceShape*>(&A);
+    const auto* wb = dynamic_cast<const halfSpaceShape*>(&B);
+    if (wa && b)
+    {
+        return cap(pA.position(), pA.vectorToWorld(vec3::UnitZ()), pB.position(), b->radius());
+    }
+    if (a && wb)
+    {
+        contactGeometry g =
+            cap(pB.position(), pB.vectorToWorld(vec3::UnitZ()), pA.position(), a->radius());
+        for (contactRegion& r : g.regions) r.normal = -r.normal;
+        return g;
+    }
     if (!a || !b)
     {
         throw coreError
         (
-            "Overlap method 'sphere' needs two spheres, not " + A.type()
+            "Overlap method 'sphere' needs two spheres or a sphere and a plane, not " + A.type()
           + " and " + B.type() + "; use virtualMesh"
         );
     }

@@ -120,7 +120,12 @@ public:
             }
             return;
         }
-        if (level < maxLevel_)
+        // Where one body is known to contain the cell only the other's
+        // surface crosses it, and the leaf's tangent plane integrates that
+        // to second order: one level less suffices. Where both surfaces
+        // cross (the rim of the overlap, which sets the normal) refine fully.
+        const int stopLevel = (inA || inB) ? std::max(0, maxLevel_ - 1) : maxLevel_;
+        if (level < stopLevel)
         {
             const double h = 0.5*s;
             // A child's centre is r/2 from this centre

@@ -49,7 +49,7 @@ bool Foam::functionObjects::immersedDEM::execute()
 {
     ++nExecuted_;
     Log << type() << ' ' << name() << ": time " << time_.timeName()
-        << ", bodies " << state_.bodies().size()
+        << ", bodies " << state_.nBodies()
         << ", step " << nExecuted_ << endl;
     return true;
 }

@@ -1,0 +1,92 @@
+#include "contactLaw.H"
+#include "coreError.H"
+#include "volumeContactLaw.H"
+#include "hertzMindlinContactLaw.H"
+
+#include <functional>
+#include <map>
+
+namespace immersedDEM
+{
+
+namespace
+{
+
+const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>>& table()
+{
+    static const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>> t
+    {
+        {"volume", []{ return std::unique_ptr<contactLaw>(new volumeContactLaw()); }},
+        {"hertzMindlin", []{ return std::unique_ptr<contactLaw>(new hertzMindlinContactLaw()); }}
+    };
+    return t;
+}
+
+} // End anonymous namespace
+
+
+std::vector<std::string> contactLaw::types()
+{
+    std::vector<std::string> names;
+    for (const auto& e : table()) names.push_back(e.first);
+    return names;
+}
+
+
+std::unique_ptr<contactLaw> contactLaw::New(const std::string& type)
+{
+    const auto it = table().find(type);
+    if (it == table().end())
+    {
+        std::string valid;
+        for (const std::string& n : types()) valid += (valid.empty() ? "" : " ") + n;
+        throw coreError
+        (
+            "Unknown contact law '" + type + "'; valid laws are (" + valid + ")"
+        );
+    }
+    return it->second();
+}
+
+
+vec3 contactLaw::tangentialForce
+(
+    const contactInput& in,
+    contactHistory& h,
+    double stiffness,
+    double dampingT,
+    double normalForce,
+    bool& sliding
+)
+{
+    const vec3& n = in.region.normal;
+    const vec3 v = in.relativeVelocity;
+    const vec3 vt = v - v.dot(n)*n;
+
+    // Turn the spring into the current contact plane, keeping its length
+    vec3 xi = h.tangentialSpring;
+    const double len = xi.norm();
+    if (len > 0)
+    {
+        const vec3 inPlane = xi - xi.dot(n)*n;
+        const double lp = inPlane.norm();
+        xi = lp > 1e-12*len ? vec3(inPlane*(len/lp)) : vec3(vec3::Zero());
+    }
+    xi += vt*in.dt;
+
+    vec3 ft = -stiffness*xi - dampingT*vt;
+    const double limit = in.material.friction*normalForce;
+    sliding = false;
+    if (ft.norm() > limit)
+    {
+        sliding = true;
+        const double fn = ft.norm();
+        ft = fn > 0 ? vec3(ft*(limit/fn)) : vec3(vec3::Zero());
+        // The spring holds what the limit allows, less the damping part
+        xi = stiffness > 0 ? vec3(-(ft + dampingT*vt)/stiffness) : vec3(vec3::Zero());
+    }
+    h.tangentialSpring = xi;
+    return ft;
+}
+
+} // End namespace immersedDEM

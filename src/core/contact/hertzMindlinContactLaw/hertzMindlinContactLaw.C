@@ -1,0 +1,51 @@
+#include "hertzMindlinContactLaw.H"
+#include "restitutionCalibration.H"
+
+#include <algorithm>
+#include <cmath>
+
+namespace immersedDEM
+{
+
+contactOutput hertzMindlinContactLaw::evaluate(const contactInput& in, contactHistory& h) const
+{
+    const double delta = std::max(0.0, in.overlapDepth);
+    const double R = in.effectiveRadius;
+    const double E = in.material.effectiveModulus;
+    const double G = in.material.effectiveShearModulus;
+    const double vApproach = -in.relativeVelocity.dot(in.region.normal);
+    h.approach = std::max(0.0, h.approach + vApproach*in.dt);
+
+    const double root = std::sqrt(R*delta);
+    const double Sn = 2*E*root;
+    const double St = 8*G*root;
+    const double c = restitutionCalibration::damping(in.material.restitution, 1.5);
+
+    contactOutput out;
+    out.normalForce = std::max
+    (
+        0.0,
+        4.0/3.0*E*std::sqrt(R)*delta*std::sqrt(delta)
+      + c*std::sqrt(in.effectiveMass*Sn)*vApproach
+    );
+    out.tangentialForce = tangentialForce
+    (
+        in, h, St, c*std::sqrt(in.effectiveMass*St), out.normalForce, out.sliding
+    );
+    out.force = out.normalForce*in.region.normal + out.tangentialForce;
+    h.maxNormalForce = std::max(h.maxNormalForce, out.normalForce);
+    return out;
+}
+
+
+double hertzMindlinContactLaw::contactTime
+(
+    const pairMaterial& m, double effectiveMass, double effectiveRadius,
+    double, double v
+) const
+{
+    const double E = m.effectiveModulus;
+    return 2.87*std::pow(effectiveMass*effectiveMass/(effectiveRadius*E*E*v), 0.2);
+}
+
+} // End namespace immersedDEM

@@ -1,0 +1,346 @@
+#include "demSolver.H"
+#include "rigidBodyIntegrator.H"
+#include "sphereShape.H"
+#include "coreError.H"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace immersedDEM
+{
+
+demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& settings)
+:
+    materials_(std::move(materials)),
+    settings_(settings),
+    engine_(overlapEngine::New(settings.overlapMethod)),
+    law_(contactLaw::New(settings.contactLaw))
+{
+    if (materials_.empty())
+    {
+        throw coreError("The DEM needs at least one material");
+    }
+    for (const contactMaterial& m : materials_)
+    {
+        m.check();
+    }
+    if (settings_.stepsPerContact < 10)
+    {
+        throw coreError
+        (
+            "stepsPerContact is " + std::to_string(settings_.stepsPerContact)
+          + "; it must be at least 10 (30 or more resolves a collision)"
+        );
+    }
+    if (settings_.overlap.level < 0 || settings_.overlap.level > 10)
+    {
+        throw coreError("level must be in [0, 10]");
+    }
+}
+
+
+int demSolver::addBody(rigidBody b, bool wall)
+{
+    if (b.material < 0 || b.material >= int(materials_.size()))
+    {
+        throw coreError("Body '" + b.name + "': material index out of range");
+    }
+    if (wall && b.motion == motionType::free)
+    {
+        throw coreError("Wall '" + b.name + "' must be fixed or prescribed");
+    }
+    if (law_->needsSpheres() && !wall && !dynamic_cast<const sphereShape*>(b.geometry.get()))
+    {
+        throw coreError
+        (
+            "Body '" + b.name + "': contact law " + law_->type()
+          + " needs spheres; use the volume law for other shapes"
+        );
+    }
+    bodies_.push_back(std::move(b));
+    isWall_.push_back(wall);
+    forcesCurrent_ = false;
+    return int(bodies_.size()) - 1;
+}
+
+
+double demSolver::effectiveRadius(int a, int b) const
+{
+    const double Rb = bodies_[b].equivalentRadius();
+    if (isWall_[a])
+    {
+        return Rb;
+    }
+    const double Ra = bodies_[a].equivalentRadius();
+    return Ra*Rb/(Ra + Rb);
+}
+
+
+std::vector<std::pair<int, int>> demSolver::candidatePairs() const
+{
+    // Sweep and prune along x
+    const int n = int(bodies_.size());
+    std::vector<axisAlignedBox> box(n);
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i)
+    {
+        box[i] = bodies_[i].geometry->worldBox(bodies_[i].pose);
+        order[i] = i;
+    }
+    std::sort
+    (
+        order.begin(), order.end(),
+        [&](int i, int j){ return box[i].min.x() < box[j].min.x(); }
+    );
+    std::vector<std::pair<int, int>> pairs;
+    for (int s = 0; s < n; ++s)
+    {
+        const int i = order[s];
+        for (int t = s + 1; t < n; ++t)
+        {
+            const int j = order[t];
+            if (box[j].min.x() > box[i].max.x()) break;
+            if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
+            if (!box[i].overlaps(box[j])) continue;
+            // Walls (then lower indices) are A
+            const bool iFirst = isWall_[i] != isWall_[j] ? bool(isWall_[i]) : i < j;
+            pairs.emplace_back(iFirst ? i : j, iFirst ? j : i);
+        }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+
+void demSolver::evaluatePair
+(
+    int ia, int ib,
+    std::map<std::pair<int, int>, std::vector<contactHistory>>& next
+)
+{
+    rigidBody& A = bodies_[ia];
+    rigidBody& B = bodies_[ib];
+    const contactGeometry g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, settings_.overlap);
+    ++counters_.pairEvaluations;
+    counters_.queries += g.queries;
+    if (g.regions.empty())
+    {
+        return;
+    }
+
+    const auto key = std::make_pair(ia, ib);
+    const auto old = history_.find(key);
+    std::vector<char> taken(old == history_.end() ? 0 : old->second.size(), 0);
+    std::vector<contactHistory>& hs = next[key];
+
+    const pairMaterial pm = pairMaterial::of(materials_[A.material], materials_[B.material]);
+    const double mA = A.mass(), mB = B.mass();
+    const double mEff =
+        A.dynamic() && B.dynamic() ? mA*mB/(mA + mB) : (A.dynamic() ? mA : mB);
+    const double Reff = effectiveRadius(ia, ib);
+    const double lc = settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
+
+    // Overlap depth for laws on spheres: B is a sphere (walls are A)
+    double depth = 0;
+    double RHertz = Reff;
+    if (law_->needsSpheres())
+    {
+        const auto* sb = dynamic_cast<const sphereShape*>(B.geometry.get());
+        depth = sb->radius() - A.geometry->signedDistance(A.pose, B.pose.position());
+        if (const auto* sa = dynamic_cast<const sphereShape*>(A.geometry.get()))
+        {
+            RHertz = sa->radius()*sb->radius()/(sa->radius() + sb->radius());
+        }
+        else
+        {
+            RHertz = sb->radius();
+        }
+    }
+
+    for (const contactRegion& r : g.regions)
+    {
+        // The history of the nearest region of the last step, if close
+        contactHistory h;
+        if (old != history_.end())
+        {
+            const double reach = std::max(settings_.overlap.h, std::sqrt(std::max(r.area, 0.0)));
+            int best = -1;
+            double bestDist = reach;
+            for (size_t k = 0; k < old->second.size(); ++k)
+            {
+                const double d = (old->second[k].point - r.point).norm();
+                if (!taken[k] && d <= bestDist)
+                {
+                    best = int(k);
+                    bestDist = d;
+                }
+            }
+            if (best >= 0)
+            {
+                taken[best] = 1;
+                h = old->second[best];
+            }
+        }
+
+        contactInput in;
+        in.region = r;
+        in.relativeVelocity = B.pointVelocity(r.point) - A.pointVelocity(r.point);
+        in.effectiveMass = mEff;
+        in.material = pm;
+        in.characteristicLength = lc;
+        in.effectiveRadius = RHertz;
+        in.overlapDepth = depth;
+        in.dt = lastDt_;
+        const contactOutput f = law_->evaluate(in, h);
+        h.normal = r.normal;
+        h.point = r.point;
+        hs.push_back(h);
+
+        B.contactForce += f.force;
+        B.contactTorque += (r.point - B.pose.position()).cross(f.force);
+        A.contactForce -= f.force;
+        A.contactTorque -= (r.point - A.pose.position()).cross(f.force);
+
+        contactRecord rec;
+        rec.a = ia;
+        rec.b = ib;
+        rec.region = r;
+        rec.force = f;
+        contacts_.push_back(rec);
+    }
+}
+
+
+void demSolver::computeContacts()
+{
+    if (settings_.overlap.h <= 0)
+    {
+        double dMin = std::numeric_limits<double>::max();
+        for (size_t i = 0; i < bodies_.size(); ++i)
+        {
+            if (!isWall_[i]) dMin = std::min(dMin, 2*bodies_[i].equivalentRadius());
+        }
+        if (dMin < std::numeric_limits<double>::max())
+        {
+            settings_.overlap.h = dMin/20;
+        }
+    }
+
+    const auto t0 = std::chrono::steady_clock::now();
+    for (rigidBody& b : bodies_)
+    {
+        b.clearContactForces();
+        b.externalForce = b.fluidForce + b.mass()*settings_.gravity;
+        b.externalTorque = b.fluidTorque;
+    }
+    contacts_.clear();
+    std::map<std::pair<int, int>, std::vector<contactHistory>> next;
+    for (const auto& p : candidatePairs())
+    {
+        evaluatePair(p.first, p.second, next);
+    }
+    history_.swap(next);
+    forcesCurrent_ = true;
+    counters_.contactSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+
+double demSolver::timeStep() const
+{
+    if (settings_.deltaT > 0)
+    {
+        return settings_.deltaT;
+    }
+    double vMax = 0;
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        vMax = std::max(vMax, bodies_[i].velocity.norm());
+    }
+    const double v = std::max(settings_.referenceSpeed, 2*vMax);
+
+    // Materials present
+    std::vector<char> present(materials_.size(), 0);
+    for (const rigidBody& b : bodies_) present[b.material] = 1;
+
+    double tc = std::numeric_limits<double>::max();
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        const rigidBody& b = bodies_[i];
+        if (!b.dynamic()) continue;
+        const double m = b.mass();
+        const double R = b.equivalentRadius();
+        for (size_t k = 0; k < materials_.size(); ++k)
+        {
+            if (!present[k]) continue;
+            const pairMaterial pm = pairMaterial::of(materials_[b.material], materials_[k]);
+            // Against a like body (m*/2, R/2), and against a wall (m, R)
+            for (const double f : {0.5, 1.0})
+            {
+                const double Reff = f*R;
+                const double lc =
+                    settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
+                tc = std::min(tc, law_->contactTime(pm, f*m, Reff, lc, v));
+            }
+        }
+    }
+    if (tc == std::numeric_limits<double>::max())
+    {
+        return std::numeric_limits<double>::max();
+    }
+    return tc/settings_.stepsPerContact;
+}
+
+
+void demSolver::step(double dt)
+{
+    if (!forcesCurrent_)
+    {
+        lastDt_ = 0;
+        computeContacts();
+    }
+    lastDt_ = dt;
+    for (rigidBody& b : bodies_)
+    {
+        rigidBodyIntegrator::kick(b, 0.5*dt);
+        rigidBodyIntegrator::drift(b, dt);
+    }
+    computeContacts();
+    for (rigidBody& b : bodies_)
+    {
+        rigidBodyIntegrator::kick(b, 0.5*dt);
+    }
+    time_ += dt;
+    ++counters_.steps;
+}
+
+
+int demSolver::advance(double T)
+{
+    if (!(T > 0))
+    {
+        return 0;
+    }
+    const double dtMax = timeStep();
+    const int n = std::max(1, int(std::ceil(T/dtMax - 1e-9)));
+    const double dt = T/n;
+    for (int i = 0; i < n; ++i)
+    {
+        step(dt);
+    }
+    return n;
+}
+
+
+double demSolver::kineticEnergy() const
+{
+    double e = 0;
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (bodies_[i].dynamic()) e += bodies_[i].kineticEnergy();
+    }
+    return e;
+}
+
+} // End namespace immersedDEM

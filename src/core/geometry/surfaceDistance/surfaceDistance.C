@@ -1,0 +1,88 @@
+#include "surfaceDistance.H"
+
+#include <cmath>
+#include <unordered_map>
+
+namespace immersedDEM
+{
+
+namespace
+{
+
+std::uint64_t edgeKey(int a, int b)
+{
+    return (std::uint64_t(std::max(a, b)) << 32) | std::uint64_t(std::min(a, b));
+}
+
+} // End anonymous namespace
+
+
+surfaceDistance::surfaceDistance(const triangleSoup& s)
+:
+    faces_(s.faces),
+    bvh_(s)
+{
+    const size_t nF = s.faces.size();
+    faceNormal_.resize(nF);
+    edgeNormal_.resize(nF);
+    vertexNormal_.assign(s.points.size(), vec3::Zero());
+    std::unordered_map<std::uint64_t, vec3> edgeSum;
+    edgeSum.reserve(3*nF);
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        const triFace& f = s.faces[fi];
+        const vec3 n = (s.points[f[1]] - s.points[f[0]])
+            .cross(s.points[f[2]] - s.points[f[0]]).normalized();
+        faceNormal_[fi] = n;
+        for (int k = 0; k < 3; ++k)
+        {
+            const vec3& p0 = s.points[f[k]];
+            const vec3 e1 = (s.points[f[(k + 1) % 3]] - p0).normalized();
+            const vec3 e2 = (s.points[f[(k + 2) % 3]] - p0).normalized();
+            const double angle = std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
+            vertexNormal_[f[k]] += angle*n;
+            // Not operator[]: it would leave a new (Eigen) vec3 uninitialised
+            edgeSum.emplace(edgeKey(f[k], f[(k + 1) % 3]), vec3::Zero()).first->second += n;
+        }
+    }
+    for (vec3& n : vertexNormal_) n.normalize();
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        const triFace& f = s.faces[fi];
+        for (int k = 0; k < 3; ++k)
+        {
+            edgeNormal_[fi][k] = edgeSum[edgeKey(f[k], f[(k + 1) % 3])].normalized();
+        }
+    }
+}
+
+
+surfacePoint surfaceDistance::closest(const vec3& p, double maxDistSqr, vec3* pseudoOut) const
+{
+    triangleBVH::hit h = bvh_.closest(p, maxDistSqr);
+    if (h.face < 0)
+    {
+        h = bvh_.closest(p);
+    }
+    const triFace& f = faces_[h.face];
+    const vec3& pseudo =
+        h.feature == 0 ? faceNormal_[h.face]
+      : h.feature <= 3 ? vertexNormal_[f[h.feature - 1]]
+      : edgeNormal_[h.face][h.feature - 4];
+
+    surfacePoint sp;
+    sp.point = h.point;
+    const vec3 d = p - h.point;
+    const double dist = std::sqrt(h.distSqr);
+    const bool in = d.dot(pseudo) < 0;
+    sp.distance = in ? -dist : dist;
+    // Outward: along p - closest, its sign fixed by the side
+    sp.normal = dist > 0 ? vec3((in ? -d : d)/dist) : pseudo;
+    if (pseudoOut)
+    {
+        *pseudoOut = pseudo;
+    }
+    return sp;
+}
+
+} // End namespace immersedDEM

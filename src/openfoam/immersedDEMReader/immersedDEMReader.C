@@ -1,0 +1,344 @@
+#include "immersedDEMReader.H"
+#include "dictionaryChecks.H"
+#include "sphereShape.H"
+#include "triangleMeshShape.H"
+#include "halfSpaceShape.H"
+#include "wallMeshShape.H"
+#include "surfaceFileIO.H"
+#include "coreError.H"
+#include "unitConversion.H"
+#include "IOstreams.H"
+
+using namespace immersedDEM;
+
+immersedDEM::vec3 Foam::immersedDEMReader::toCore(const vector& v)
+{
+    return vec3(v.x(), v.y(), v.z());
+}
+
+
+Foam::vector Foam::immersedDEMReader::toFoam(const immersedDEM::vec3& v)
+{
+    return vector(v.x(), v.y(), v.z());
+}
+
+
+namespace
+{
+
+using namespace Foam;
+
+std::vector<contactMaterial> readMaterials(const dictionary& all)
+{
+    std::vector<contactMaterial> materials;
+    for (const entry& e : all)
+    {
+        const dictionary& d = immersedDEMChecks::subDictEntry(all, e, "material properties");
+        immersedDEMChecks::allowOnly
+        (
+            d, {"youngsModulus", "poissonsRatio", "restitution", "friction"}
+        );
+        contactMaterial m;
+        m.name = e.keyword();
+        m.youngsModulus = immersedDEMChecks::positive(d, "youngsModulus");
+        m.poissonsRatio = immersedDEMChecks::inRange(d, "poissonsRatio", 0, 0.5);
+        m.restitution = immersedDEMChecks::inRangeOrDefault(d, "restitution", 1e-6, 1, 1);
+        m.friction = immersedDEMChecks::inRangeOrDefault(d, "friction", 0, 100, 0);
+        materials.push_back(m);
+    }
+    if (materials.empty())
+    {
+        FatalIOErrorInFunction(all)
+            << "No material in " << all.name() << exit(FatalIOError);
+    }
+    return materials;
+}
+
+
+int materialIndex
+(
+    const dictionary& d,
+    const std::vector<contactMaterial>& materials,
+    const word& owner
+)
+{
+    const word name = d.get<word>("material");
+    wordList names;
+    for (size_t i = 0; i < materials.size(); ++i)
+    {
+        names.append(materials[i].name);
+        if (materials[i].name == name) return int(i);
+    }
+    FatalIOErrorInFunction(d)
+        << "Unknown material '" << name << "' for '" << owner << "' in "
+        << d.name() << nl << "Valid materials: " << names << nl
+        << exit(FatalIOError);
+    return -1;
+}
+
+
+demSettings readSettings(const dictionary& top)
+{
+    demSettings s;
+    if (const dictionary* c = top.findDict("contact"))
+    {
+        immersedDEMChecks::allowOnly
+        (
+            *c, {"method", "level", "cellSize", "law", "characteristicLength"}
+        );
+        wordList methods;
+        for (const std::string& m : overlapEngine::types()) methods.append(word(m));
+        s.overlapMethod = immersedDEMChecks::oneOfOrDefault(*c, "method", methods, "virtualMesh");
+        s.overlap.level = label(immersedDEMChecks::inRangeOrDefault(*c, "level", 0, 8, 4));
+        s.overlap.h = immersedDEMChecks::positiveOrDefault(*c, "cellSize", 0);
+        wordList laws;
+        for (const std::string& l : contactLaw::types()) laws.append(word(l));
+        s.contactLaw = immersedDEMChecks::oneOfOrDefault(*c, "law", laws, "volume");
+        s.characteristicLength =
+            immersedDEMChecks::positiveOrDefault(*c, "characteristicLength", 0);
+    }
+    if (const dictionary* t = top.findDict("time"))
+    {
+        immersedDEMChecks::allowOnly(*t, {"deltaT", "stepsPerContact", "referenceSpeed"});
+        s.deltaT = immersedDEMChecks::positiveOrDefault(*t, "deltaT", 0);
+        s.stepsPerContact =
+            label(immersedDEMChecks::inRangeOrDefault(*t, "stepsPerContact", 10, 1e6, 30));
+        s.referenceSpeed = immersedDEMChecks::positiveOrDefault(*t, "referenceSpeed", 0.1);
+    }
+    return s;
+}
+
+
+Eigen::Vector3i readLocks(const dictionary& d, const word& key)
+{
+    const vector v = d.getOrDefault<vector>(key, Zero);
+    Eigen::Vector3i lock;
+    for (direction i = 0; i < 3; ++i)
+    {
+        if (v[i] != 0 && v[i] != 1)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword '" << key << "' in " << d.name()
+                << " takes 0 (free) or 1 (locked) per axis, not " << v << nl
+                << exit(FatalIOError);
+        }
+        lock[i] = int(v[i]);
+    }
+    return lock;
+}
+
+
+rigidBody readBody
+(
+    const word& name,
+    const dictionary& d,
+    const fileName& surfaceDir,
+    const std::vector<contactMaterial>& materials
+)
+{
+    const word shapeType = immersedDEMChecks::oneOf(d, "shape", {"sphere", "triangleMesh"});
+    wordList allowed
+    {
+        "shape", "density", "material", "position", "rotationAxis",
+        "rotationAngle", "velocity", "angularVelocity", "motion",
+        "lockTranslation", "lockRotation"
+    };
+    std::shared_ptr<const shape> geometry;
+    if (shapeType == "sphere")
+    {
+        allowed.append("radius");
+        immersedDEMChecks::allowOnly(d, allowed);
+        geometry = std::make_shared<sphereShape>(immersedDEMChecks::positive(d, "radius"));
+    }
+    else
+    {
+        allowed.append(wordList{"file", "scale", "checkSelfIntersection"});
+        immersedDEMChecks::allowOnly(d, allowed);
+        const fileName file = surfaceDir/d.get<fileName>("file");
+        const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+        try
+        {
+            auto s = triangleMeshShape::fromFile
+            (
+                file, scale, d.getOrDefault<bool>("checkSelfIntersection", true)
+            );
+            for (const std::string& w : s->warnings())
+            {
+                WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
+            }
+            geometry = std::move(s);
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Body '" << name << "', keyword 'file' in " << d.name()
+                << ":" << nl << "    " << err.what() << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    rigidBody b
+    (
+        name, geometry, immersedDEMChecks::positive(d, "density"),
+        materialIndex(d, materials, name)
+    );
+
+    const vector axis = d.getOrDefault<vector>("rotationAxis", vector(0, 0, 1));
+    if (mag(axis) == 0)
+    {
+        FatalIOErrorInFunction(d)
+            << "Keyword 'rotationAxis' in " << d.name() << " is a zero vector"
+            << exit(FatalIOError);
+    }
+    const scalar angle = degToRad(d.getOrDefault<scalar>("rotationAngle", 0));
+    // The rotation turns the shape as given in its file about its centroid
+    const quat R = bodyPose::axisAngle(immersedDEMReader::toCore(axis), angle);
+    b.pose = bodyPose
+    (
+        immersedDEMReader::toCore(d.get<vector>("position")),
+        R*geometry->bodyInFile().orientation()
+    );
+    b.velocity = immersedDEMReader::toCore(d.getOrDefault<vector>("velocity", Zero));
+    b.angularVelocity =
+        immersedDEMReader::toCore(d.getOrDefault<vector>("angularVelocity", Zero));
+    b.motion = motionTypeFromName
+    (
+        immersedDEMChecks::oneOfOrDefault(d, "motion", {"free", "fixed", "prescribed"}, "free")
+    );
+    b.lockTranslation = readLocks(d, "lockTranslation");
+    b.lockRotation = readLocks(d, "lockRotation");
+
+    const scalar V = geometry->volume();
+    const vec3 J = b.inertia();
+    Info<< "    body " << name << ": " << shapeType
+        << ", volume " << V << " m3, mass " << b.mass()
+        << " kg, principal moments (" << J.x() << ' ' << J.y() << ' ' << J.z()
+        << ") kg m2" << endl;
+    return b;
+}
+
+
+rigidBody readWall
+(
+    const word& name,
+    const dictionary& d,
+    const fileName& surfaceDir,
+    const std::vector<contactMaterial>& materials,
+    double thickness
+)
+{
+    const word type = immersedDEMChecks::oneOf(d, "type", {"plane", "triSurface"});
+    std::shared_ptr<const shape> geometry;
+    bodyPose pose;
+    if (type == "plane")
+    {
+        immersedDEMChecks::allowOnly
+        (
+            d, {"type", "point", "normal", "material", "velocity"}
+        );
+        const vector n = d.get<vector>("normal");
+        if (mag(n) == 0)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword 'normal' in " << d.name() << " is a zero vector"
+                << exit(FatalIOError);
+        }
+        geometry = std::make_shared<halfSpaceShape>();
+        pose = halfSpaceShape::poseOf
+        (
+            immersedDEMReader::toCore(d.get<vector>("point")), immersedDEMReader::toCore(n)
+        );
+    }
+    else
+    {
+        immersedDEMChecks::allowOnly
+        (
+            d, {"type", "file", "scale", "flipNormals", "material", "velocity"}
+        );
+        const fileName file = surfaceDir/d.get<fileName>("file");
+        try
+        {
+            triangleSoup s = surfaceFileIO::read(file);
+            const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+            for (vec3& p : s.points) p *= scale;
+            if (d.getOrDefault<bool>("flipNormals", false))
+            {
+                for (triFace& f : s.faces) std::swap(f[1], f[2]);
+            }
+            geometry = std::make_shared<wallMeshShape>(std::move(s), file, thickness);
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Wall '" << name << "', keyword 'file' in " << d.name()
+                << ":" << nl << "    " << err.what() << nl
+                << exit(FatalIOError);
+        }
+    }
+    rigidBody w(name, geometry, 1, materialIndex(d, materials, name));
+    w.pose = pose;
+    w.velocity = immersedDEMReader::toCore(d.getOrDefault<vector>("velocity", Zero));
+    w.motion = w.velocity.norm() > 0 ? motionType::prescribed : motionType::fixed;
+    Info<< "    wall " << name << ": " << type << endl;
+    return w;
+}
+
+} // End anonymous namespace
+
+
+std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
+(
+    const dictionary& dict,
+    const fileName& surfaceDir,
+    const vector& gravity
+)
+{
+    immersedDEMChecks::allowOnly(dict, {"materials", "contact", "time", "bodies", "walls"});
+
+    const std::vector<contactMaterial> materials = readMaterials(dict.subDict("materials"));
+    demSettings settings = readSettings(dict);
+    settings.gravity = toCore(gravity);
+
+    std::unique_ptr<demSolver> dem;
+    try
+    {
+        dem.reset(new demSolver(materials, settings));
+    }
+    catch (const coreError& err)
+    {
+        FatalIOErrorInFunction(dict)
+            << "In " << dict.name() << ": " << err.what() << nl << exit(FatalIOError);
+    }
+
+    const dictionary& bodies = dict.subDict("bodies");
+    double largest = 0;
+    for (const entry& e : bodies)
+    {
+        const dictionary& d = immersedDEMChecks::subDictEntry(bodies, e, "a body's description");
+        rigidBody b = readBody(e.keyword(), d, surfaceDir, materials);
+        largest = std::max(largest, 2*b.geometry->boundingRadius());
+        try
+        {
+            dem->addBody(std::move(b));
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "In " << d.name() << ": " << err.what() << nl << exit(FatalIOError);
+        }
+    }
+
+    if (const dictionary* walls = dict.findDict("walls"))
+    {
+        for (const entry& e : *walls)
+        {
+            const dictionary& d = immersedDEMChecks::subDictEntry(*walls, e, "a wall's description");
+            dem->addBody
+            (
+                readWall(e.keyword(), d, surfaceDir, materials, std::max(largest, SMALL)),
+                true
+            );
+        }
+    }
+    return dem;
+}
