@@ -231,7 +231,12 @@ void demSolver::computeContacts()
     for (rigidBody& b : bodies_)
     {
         b.clearContactForces();
-        b.externalForce = b.fluidForce + b.mass()*settings_.gravity;
+        // Walls have infinite mass: no weight (and no inf*0 either)
+        b.externalForce = b.fluidForce;
+        if (b.dynamic())
+        {
+            b.externalForce += b.mass()*settings_.gravity;
+        }
         b.externalTorque = b.fluidTorque;
     }
     contacts_.clear();
@@ -282,6 +287,15 @@ double demSolver::timeStep() const
                 const double lc =
                     settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
                 tc = std::min(tc, law_->contactTime(pm, f*m, Reff, lc, v));
+
+                // A mesh may touch with a flat face: a linear spring of
+                // stiffness Y* A/l_c over its cross-section A ~ pi R^2,
+                // whose half period does not depend on the speed
+                if (!dynamic_cast<const sphereShape*>(b.geometry.get()))
+                {
+                    const double k = pm.effectiveModulus*M_PI*R*R/lc;
+                    tc = std::min(tc, M_PI*std::sqrt(f*m/k));
+                }
             }
         }
     }

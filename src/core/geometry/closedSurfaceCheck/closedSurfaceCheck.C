@@ -1,6 +1,7 @@
 #include "closedSurfaceCheck.H"
 #include "coreError.H"
 #include "massProperties.H"
+#include "floatingPointGuard.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -56,6 +57,7 @@ struct pairCounter
 
 long closedSurfaceCheck::countSelfIntersections(const triangleSoup& soup, long maxPairs)
 {
+    const floatingPointGuard noTraps;
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
     using mesh = CGAL::Surface_mesh<K::Point_3>;
 

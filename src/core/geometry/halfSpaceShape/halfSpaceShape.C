@@ -18,13 +18,16 @@ bodyPose halfSpaceShape::poseOf(const vec3& point, const vec3& normal)
 
 double halfSpaceShape::volume() const
 {
-    return std::numeric_limits<double>::infinity();
+    // A wall has no mass properties: it never moves by forces. Zero, not
+    // infinity, so no arithmetic on it can raise a floating-point trap
+    // (OpenFOAM runs with them enabled)
+    return 0;
 }
 
 
 vec3 halfSpaceShape::principalMoments() const
 {
-    return vec3::Constant(std::numeric_limits<double>::infinity());
+    return vec3::Zero();
 }
 
 

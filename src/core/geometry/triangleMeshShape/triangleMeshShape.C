@@ -3,6 +3,7 @@
 #include "coreError.H"
 #include "surfaceFileIO.H"
 #include "surfaceDistance.H"
+#include "floatingPointGuard.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -33,6 +34,7 @@ struct triangleMeshShape::search
 
     explicit search(const triangleSoup& s)
     {
+        const floatingPointGuard noTraps;
         std::vector<mesh::Vertex_index> v;
         v.reserve(s.points.size());
         for (const vec3& p : s.points)
@@ -112,6 +114,7 @@ bool triangleMeshShape::inside(const vec3& p) const
     {
         return false;
     }
+    const floatingPointGuard noTraps;
     return (*search_->sideOf)(search::point(p.x(), p.y(), p.z())) != CGAL::ON_UNBOUNDED_SIDE;
 }
 
@@ -124,6 +127,10 @@ surfacePoint triangleMeshShape::closest(const vec3& p) const
 
 surfacePoint triangleMeshShape::closest(const vec3& p, double distanceBound) const
 {
+    if (!(distanceBound < 1e100))
+    {
+        return closest(p);      // no bound; and no overflow below
+    }
     // Slack for round-off in the caller's bound
     const double b = distanceBound*(1 + 1e-9) + 1e-12*boundingRadius_;
     return closestWithin(p, b*b);

@@ -50,18 +50,25 @@ wallMeshShape::wallMeshShape
 
 double wallMeshShape::volume() const
 {
-    return std::numeric_limits<double>::infinity();
+    // A wall has no mass properties: it never moves by forces. Zero, not
+    // infinity, so no arithmetic on it can raise a floating-point trap
+    // (OpenFOAM runs with them enabled)
+    return 0;
 }
 
 
 vec3 wallMeshShape::principalMoments() const
 {
-    return vec3::Constant(std::numeric_limits<double>::infinity());
+    return vec3::Zero();
 }
 
 
 surfacePoint wallMeshShape::closest(const vec3& p, double bound) const
 {
+    if (!(bound < 1e100))
+    {
+        return distance_.closest(p);    // no bound; and no overflow below
+    }
     const double b = bound*(1 + 1e-9) + 1e-12*radius_;
     return distance_.closest(p, b*b);
 }

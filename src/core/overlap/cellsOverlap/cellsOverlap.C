@@ -172,10 +172,17 @@ contactGeometry cellsOverlap::evaluate
 
         // A to B: cells on B's side hold more of B
         vec3 side = vec3::Zero();
+        double sideScale = 0;
         for (int m : e.second)
         {
             const sharedCell& sc = *cells[m];
-            side += (sc.lambdaB - sc.lambdaA)*(sc.corner + vec3::Constant(0.5*h) - mean);
+            const vec3 x = sc.corner + vec3::Constant(0.5*h) - mean;
+            side += (sc.lambdaB - sc.lambdaA)*x;
+            sideScale += std::abs(sc.lambdaB - sc.lambdaA)*x.norm();
+        }
+        if (!(side.norm() > 1e-9*sideScale))
+        {
+            side = vec3::Zero();    // symmetric: round-off only
         }
         const vec3 fallback =
             centreLine.norm() > 0 ? vec3(centreLine.normalized())

@@ -1,5 +1,6 @@
 #include "exactOverlap.H"
 #include "coreError.H"
+#include "floatingPointGuard.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -102,6 +103,7 @@ contactGeometry exactOverlap::evaluate
         );
     }
 
+    const floatingPointGuard noTraps;
     contactGeometry g;
     const worldSurface a(A, pA), b(B, pB);
     const axisAlignedBox box = a.box.intersection(b.box);

@@ -36,6 +36,7 @@ struct cellSum
     vec3 first = vec3::Zero();
     std::vector<vec3> edgePoints;
     vec3 faceSum = vec3::Zero();    // vector area, common -> only B minus -> only A
+    double faceArea = 0;            // the area of those faces
     vec3 onlyASum = vec3::Zero();
     vec3 onlyBSum = vec3::Zero();
     long nOnlyA = 0;
@@ -49,6 +50,7 @@ struct cellSum
         first += s.first;
         edgePoints.insert(edgePoints.end(), s.edgePoints.begin(), s.edgePoints.end());
         faceSum += s.faceSum;
+        faceArea += s.faceArea;
         addSides(s);
         commons.insert(commons.end(), s.commons.begin(), s.commons.end());
         fullCells.insert(fullCells.end(), s.fullCells.begin(), s.fullCells.end());
@@ -190,15 +192,17 @@ public:
                 const int m = k + stride[a];
                 const unsigned char sm = state_[m];
                 const vec3 e = s*s*vec3::Unit(a);     // from k to m
-                if (isCommon(sk))
+                if (isCommon(sk) && (isOnlyA(sm) || isOnlyB(sm)))
                 {
-                    if (isOnlyA(sm)) { state_[k] |= nbOnlyA; sum.faceSum -= e; }
-                    if (isOnlyB(sm)) { state_[k] |= nbOnlyB; sum.faceSum += e; }
+                    state_[k] |= isOnlyA(sm) ? nbOnlyA : nbOnlyB;
+                    sum.faceSum += isOnlyA(sm) ? vec3(-e) : e;
+                    sum.faceArea += s*s;
                 }
-                if (isCommon(sm))
+                if (isCommon(sm) && (isOnlyA(sk) || isOnlyB(sk)))
                 {
-                    if (isOnlyA(sk)) { state_[m] |= nbOnlyA; sum.faceSum += e; }
-                    if (isOnlyB(sk)) { state_[m] |= nbOnlyB; sum.faceSum -= e; }
+                    state_[m] |= isOnlyA(sk) ? nbOnlyA : nbOnlyB;
+                    sum.faceSum += isOnlyA(sk) ? e : vec3(-e);
+                    sum.faceArea += s*s;
                 }
             }
         }
@@ -254,7 +258,8 @@ struct disjointSets
 
 vec3 regionNormal(const cellSum& r, const vec3& centreLine)
 {
-    vec3 ref = r.faceSum;
+    // Zero for a closed surface (a body inside the other), up to round-off
+    vec3 ref = r.faceSum.norm() > 1e-9*r.faceArea ? r.faceSum : vec3(vec3::Zero());
     if (!(ref.norm() > 0) && r.nOnlyA > 0 && r.nOnlyB > 0)
     {
         ref = r.onlyBSum/double(r.nOnlyB) - r.onlyASum/double(r.nOnlyA);
@@ -410,8 +415,50 @@ contactGeometry uniformOverlap::evaluate
         return g;
     }
 
-    // Neighbours across the faces between two contact cells (a full cell
-    // is common throughout, a cell not split is not known: neither counts)
+    // Neighbours across the faces between two split cells; a full cell is
+    // common throughout (nothing to add); in a cell neither split nor full
+    // (outside a body, or beyond the box) the neighbours of the common
+    // sub-volumes are checked now (the paper has no such neighbours: a
+    // contact plane on a cell face would have no edge sub-volumes)
+    long extraQueries = 0;
+    for (auto& e : layers)
+    {
+        const auto own = sums.find(e.first);
+        if (own == sums.end()) continue;
+        const vec3 corner = h*vec3(e.first[0], e.first[1], e.first[2]);
+        for (int a = 0; a < 3; ++a)
+        {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            for (int side = 0; side < 2; ++side)
+            {
+                cellIndex nb = e.first;
+                nb[a] += side ? 1 : -1;
+                if (layers.count(nb) || sums.count(nb)) continue;
+                std::vector<unsigned char>& P = e.second.layer[2*a + side];
+                const vec3 dir = (side ? 1.0 : -1.0)*vec3::Unit(a);
+                for (size_t t = 0; t < P.size(); ++t)
+                {
+                    if (!isCommon(P[t])) continue;
+                    vec3 idx;
+                    idx[a] = side ? n - 1 : 0;
+                    idx[b] = double(t % n);
+                    idx[c] = double(t/n);
+                    const vec3 x = corner + s*(idx + vec3::Constant(0.5)) + s*dir;
+                    extraQueries += 2;
+                    const bool a1 = A.inside(pA, x), b1 = B.inside(pB, x);
+                    if (a1 != b1)
+                    {
+                        P[t] |= a1 ? nbOnlyA : nbOnlyB;
+                        own->second.faceSum += (a1 ? -s*s : s*s)*dir;
+                        own->second.faceArea += s*s;
+                    }
+                }
+            }
+        }
+    }
+    g.queries += extraQueries;
+    g.leaves += extraQueries/2;
+
     for (auto& e : layers)
     {
         for (int a = 0; a < 3; ++a)
@@ -426,17 +473,19 @@ contactGeometry uniformOverlap::evaluate
             for (size_t t = 0; t < P.size(); ++t)
             {
                 const unsigned char sp = P[t], sq = Q[t];
-                if (isCommon(sp))
+                if (isCommon(sp) && (isOnlyA(sq) || isOnlyB(sq)))
                 {
-                    vec3& f = sums.at(e.first).faceSum;
-                    if (isOnlyA(sq)) { P[t] |= nbOnlyA; f -= ea; }
-                    if (isOnlyB(sq)) { P[t] |= nbOnlyB; f += ea; }
+                    cellSum& f = sums.at(e.first);
+                    P[t] |= isOnlyA(sq) ? nbOnlyA : nbOnlyB;
+                    f.faceSum += isOnlyA(sq) ? vec3(-ea) : ea;
+                    f.faceArea += s*s;
                 }
-                if (isCommon(sq))
+                if (isCommon(sq) && (isOnlyA(sp) || isOnlyB(sp)))
                 {
-                    vec3& f = sums.at(nb).faceSum;
-                    if (isOnlyA(sp)) { Q[t] |= nbOnlyA; f += ea; }
-                    if (isOnlyB(sp)) { Q[t] |= nbOnlyB; f -= ea; }
+                    cellSum& f = sums.at(nb);
+                    Q[t] |= isOnlyA(sp) ? nbOnlyA : nbOnlyB;
+                    f.faceSum += isOnlyA(sp) ? ea : vec3(-ea);
+                    f.faceArea += s*s;
                 }
             }
         }
