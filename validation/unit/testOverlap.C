@@ -211,3 +211,34 @@ TEST(virtualMesh, apartGivesNothingAndBadSettingsThrow)
     EXPECT_THROW(vm.evaluate(s, bodyPose(), s, bodyPose(), {0, 4}), coreError);
     EXPECT_THROW(vm.evaluate(s, bodyPose(), s, bodyPose(), {h, -1}), coreError);
 }
+
+
+TEST(virtualMesh, normalIsStableUnderSmallPoseChanges)
+{
+    // Two non-convex bodies (tori) crossing; tiny moves of B must not flip
+    // or jump the normal, and it is never NaN
+    const triangleMeshShape A(primitiveMeshes::torus(0.004, 0.0015, 48, 24), "A");
+    const triangleMeshShape B(primitiveMeshes::torus(0.004, 0.0015, 48, 24), "B");
+    const bodyPose pA = A.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    const virtualMeshOverlap vm;
+    vec3 previous = vec3::Zero();
+    for (int k = 0; k < 20; ++k)
+    {
+        const double eps = 1e-6*k;
+        const bodyPose pB = B.poseFromFilePlacement
+        (
+            bodyPose::axisAngle(vec3(1, 0, 0), M_PI/2 + eps),
+            vec3(0.0004 + eps, 0.0001, 0)
+        );
+        const auto g = vm.evaluate(A, pA, B, pB, {h, 3});
+        ASSERT_FALSE(g.regions.empty());
+        const vec3 n = g.regions[0].normal;
+        ASSERT_TRUE(n.allFinite());
+        EXPECT_NEAR(n.norm(), 1, 1e-12);
+        if (k > 0)
+        {
+            EXPECT_GT(n.dot(previous), std::cos(2*M_PI/180)) << "step " << k;
+        }
+        previous = n;
+    }
+}

@@ -30,7 +30,13 @@ contactOutput volumeContactLaw::evaluate(const contactInput& in, contactHistory&
     );
     const double nu = in.material.poissonsRatio;
     const double kt = k*2*(1 - nu)/(2 - nu);
-    out.tangentialForce = tangentialForce(in, h, kt, 0, out.normalForce, out.sliding);
+    // The tangential spring gets a dashpot of the same damping ratio as the
+    // normal one: without it a contact's tangential (and rolling) vibrations
+    // below the Coulomb limit never decay and a pile never comes to rest
+    out.tangentialForce = tangentialForce
+    (
+        in, h, kt, c*std::sqrt(in.effectiveMass*kt), out.normalForce, out.sliding
+    );
     out.force = out.normalForce*r.normal + out.tangentialForce;
     h.maxNormalForce = std::max(h.maxNormalForce, out.normalForce);
     return out;

@@ -22,9 +22,10 @@ struct baseCellSum
 {
     double volume = 0;
     vec3 first = vec3::Zero();
-    vec3 normalSum = vec3::Zero();
+    //- Outward area vector of A's surface inside B: the integral of n_A
+    //  over it (|.| is the contact area, its direction the mean normal)
+    vec3 areaVector = vec3::Zero();
     std::vector<vec3> edgePoints;
-    std::vector<std::pair<vec3, double>> cells;    // overlap cells: centre, size
 };
 
 class octreeWalk
@@ -98,7 +99,6 @@ public:
                 const double v = s*s*s;
                 sum->volume += v;
                 sum->first += v*c;
-                sum->cells.emplace_back(c, s);
                 return;
             }
             // A coarse cell inside both: its base cells, for the regions
@@ -114,7 +114,6 @@ public:
                         const double v = h_*h_*h_;
                         b.volume += v;
                         b.first += v*(blo + vec3::Constant(0.5*h_));
-                        b.cells.emplace_back(blo + vec3::Constant(0.5*h_), h_);
                     }
                 }
             }
@@ -162,6 +161,7 @@ public:
         const double ds = s/n;
         double volume = 0;
         vec3 first = vec3::Zero();
+        vec3 areaA = vec3::Zero();
         for (int i = 0; i < n; ++i)
         {
             for (int j = 0; j < n; ++j)
@@ -204,16 +204,42 @@ public:
         {
             return;
         }
-        const double v = volume;
-        sum.volume += v;
+
+        // A's tangent plane inside B: its outward area vector, from where
+        // the plane crosses n x n columns along the axis it faces most
+        if (!inA)
+        {
+            int axA = 0;
+            a.normal.cwiseAbs().maxCoeff(&axA);
+            const int ua = (axA + 1) % 3, wa = (axA + 2) % 3;
+            const double na = a.normal[axA];
+            int crossings = 0;
+            for (int i = 0; i < n; ++i)
+            {
+                for (int j = 0; j < n; ++j)
+                {
+                    vec3 x = c;
+                    x[ua] += (i + 0.5 - 0.5*n)*ds;
+                    x[wa] += (j + 0.5 - 0.5*n)*ds;
+                    const double t = -(a.distance + a.normal.dot(x - c))/na;
+                    // (-s/2, s/2], shifted by a round-off margin, so that
+                    // a plane on the face two cells share is seen by one
+                    const double tol = 1e-9*s;
+                    if (t <= -0.5*s + tol || t > 0.5*s + tol) continue;
+                    x[axA] += t;
+                    if (inB || b.distance + b.normal.dot(x - c) <= 0) ++crossings;
+                }
+            }
+            areaA = (crossings*ds*ds/std::abs(na))*a.normal;
+        }
+        sum.volume += volume;
         sum.first += first;
-        sum.cells.emplace_back(c, 0);       // size 0: a leaf, one pixel
+        sum.areaVector += areaA;
 
         if (inA || inB)
         {
             return;
         }
-        sum.normalSum += v*(a.normal - b.normal);
 
         // Edge point: where the two tangent planes meet, nearest the centre
         const double g = a.normal.dot(b.normal);
@@ -244,12 +270,12 @@ struct disjointSets
 vec3 regionNormal
 (
     const std::vector<vec3>& edgePoints,
-    const vec3& normalSum,
+    const vec3& areaVector,
     const vec3& centreLine
 )
 {
     // The orientation reference: continuous in the pose
-    vec3 ref = normalSum.norm() > 0 ? vec3(normalSum.normalized())
+    vec3 ref = areaVector.norm() > 0 ? vec3(areaVector.normalized())
         : centreLine.norm() > 0 ? vec3(centreLine.normalized()) : vec3(vec3::UnitX());
 
     if (edgePoints.size() >= 3)
@@ -270,40 +296,6 @@ vec3 regionNormal
     return ref;
 }
 
-
-double projectedArea
-(
-    const std::vector<std::pair<vec3, double>>& cells,
-    const vec3& n,
-    double pixel
-)
-{
-    const vec3 t1 = n.unitOrthogonal();
-    const vec3 t2 = n.cross(t1);
-    std::unordered_set<long long> pixels;
-    auto mark = [&](long i, long j)
-    {
-        pixels.insert((static_cast<long long>(i) << 32) ^ static_cast<long long>(j & 0xffffffff));
-    };
-    for (const auto& cs : cells)
-    {
-        const double u = cs.first.dot(t1)/pixel, w = cs.first.dot(t2)/pixel;
-        if (cs.second == 0)
-        {
-            mark(std::lround(u), std::lround(w));
-            continue;
-        }
-        const long half = std::lround(0.5*cs.second/pixel);
-        for (long i = -half; i <= half; ++i)
-        {
-            for (long j = -half; j <= half; ++j)
-            {
-                mark(std::lround(u) + i, std::lround(w) + j);
-            }
-        }
-    }
-    return double(pixels.size())*pixel*pixel;
-}
 
 } // End anonymous namespace
 
@@ -403,21 +395,19 @@ contactGeometry virtualMeshOverlap::evaluate
         const baseCellSum& s = e.second;
         r.volume += s.volume;
         r.first += s.first;
-        r.normalSum += s.normalSum;
+        r.areaVector += s.areaVector;
         r.edgePoints.insert(r.edgePoints.end(), s.edgePoints.begin(), s.edgePoints.end());
-        r.cells.insert(r.cells.end(), s.cells.begin(), s.cells.end());
     }
 
     const vec3 centreLine = pB.position() - pA.position();
-    const double pixel = h/double(1L << L);
     for (const auto& e : regions)
     {
         const baseCellSum& r = e.second;
         contactRegion cr;
         cr.volume = r.volume;
         cr.point = r.first/r.volume;
-        cr.normal = regionNormal(r.edgePoints, r.normalSum, centreLine);
-        cr.area = projectedArea(r.cells, cr.normal, pixel);
+        cr.normal = regionNormal(r.edgePoints, r.areaVector, centreLine);
+        cr.area = r.areaVector.norm();
         g.regions.push_back(cr);
     }
     // A deterministic order: largest region first
