@@ -135,6 +135,9 @@ TEST(demCollision, volumeLawMatchesReferenceIntegration)
 {
     const collision ref = reference(1.0);
     const collision c = collide("volume", "sphere", 1.0, 1.0);
+    std::cout << "volume law: peak " << c.peakForce << " N (reference " << ref.peakForce
+        << "), duration " << c.duration << " s (reference " << ref.duration
+        << "), energy after/before " << c.energyRatio << std::endl;
     EXPECT_NEAR(c.peakForce/ref.peakForce, 1, 0.01)
         << "peak " << c.peakForce << " N, reference " << ref.peakForce << " N";
     EXPECT_NEAR(c.duration/ref.duration, 1, 0.01)
@@ -157,6 +160,8 @@ TEST(demCollision, hertzMatchesHertzTheory)
     EXPECT_NEAR(tc, 260e-6, 2e-6);
 
     const collision c = collide("hertzMindlin", "sphere", 1.0, v);
+    std::cout << "Hertz: peak " << c.peakForce << " N (theory " << Fmax << "), duration "
+        << c.duration << " s (theory " << tc << ")" << std::endl;
     EXPECT_NEAR(c.peakForce/Fmax, 1, 0.01) << c.peakForce;
     EXPECT_NEAR(c.duration/tc, 1, 0.01) << c.duration;
     EXPECT_NEAR(c.energyRatio, 1, 0.001);
@@ -170,6 +175,8 @@ TEST(demCollision, virtualMeshOnStlSphereMatchesAnalyticSphere)
     std::shared_ptr<const shape> stl = triangleMeshShape::fromFile(file);
     const collision ref = collide("volume", "sphere", 1.0, 1.0, nullptr, 60);
     const collision c = collide("volume", "virtualMesh", 1.0, 1.0, stl, 60);
+    std::cout << "STL sphere on the virtual mesh: peak " << c.peakForce << " N, analytic "
+        << ref.peakForce << " N" << std::endl;
     EXPECT_NEAR(c.peakForce/ref.peakForce, 1, 0.02)
         << "virtualMesh " << c.peakForce << " N, sphere " << ref.peakForce << " N";
 }
@@ -183,6 +190,8 @@ TEST_P(demRestitution, reboundsWithTheRequestedRestitution)
     const collision c = collide("volume", "sphere", e, 1.0);
     EXPECT_NEAR(c.restitution/e, 1, 0.02) << "measured " << c.restitution;
     const collision h = collide("hertzMindlin", "sphere", e, 1.0);
+    std::cout << "e = " << e << ": volume law " << c.restitution << ", Hertz "
+        << h.restitution << std::endl;
     EXPECT_NEAR(h.restitution/e, 1, 0.02) << "Hertz measured " << h.restitution;
 }
 
@@ -196,6 +205,8 @@ TEST(demCollision, volumeLawContactTimeScalesAsSpeedToMinusOneThird)
     for (double v : {0.1, 0.3, 3.0, 10.0})
     {
         const double t = collide("volume", "sphere", 1.0, v).duration;
+        std::cout << "v = " << v << " m/s: t v^(1/3) / (t v^(1/3) at 1 m/s) = "
+            << t*std::cbrt(v)/t1 << std::endl;
         EXPECT_NEAR(t*std::cbrt(v)/t1, 1, 0.02) << "v = " << v << ", t = " << t;
     }
 }
