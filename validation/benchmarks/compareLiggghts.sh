@@ -1,0 +1,161 @@
+#!/bin/bash
+#------------------------------------------------------------------------------
+# compareLiggghts.sh: the core's sphere DEM against LIGGGHTS on the same pour
+# of 1000 spheres with a Hertz law (liggghts/pour1000.in beside this script,
+# and its twin spherePourBenchmark.C), one code after the other on the same
+# machine in the same run, timed with the same clock. Prints a table (steps,
+# wall time, steps per second, final mean and maximum height of the centres,
+# final kinetic energy) and the ratio of the wall times (ours / LIGGGHTS),
+# and how closely the piles agree (printed, not asserted). Builds nothing.
+#
+# Usage
+#   compareLiggghts.sh [spherePourBenchmark] [--steps N] [--keep]
+#
+#   spherePourBenchmark  the benchmark binary (default: the one on PATH;
+#                        src/etc/bashrc puts the project's bin dir there)
+#   --steps N            steps in both codes (default 25000, 0.2 s)
+#   --keep               keep the run directory (logs) and print its name
+#
+# Needs Debian's liggghts package (apt-get install liggghts); the environment
+# variable LIGGGHTS may name another liggghts executable.
+#------------------------------------------------------------------------------
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+input="$here/liggghts/pour1000.in"
+bench=""
+steps=25000
+keep=0
+
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --steps) steps="${2:?--steps needs a number}"; shift 2 ;;
+        --steps=*) steps="${1#--steps=}"; shift ;;
+        --keep) keep=1; shift ;;
+        -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -*) echo "compareLiggghts.sh: unknown option '$1'" >&2; exit 2 ;;
+        *) bench="$1"; shift ;;
+    esac
+done
+
+if ! [[ "$steps" =~ ^[0-9]+$ ]] || [ "$steps" -lt 1 ]; then
+    echo "compareLiggghts.sh: --steps must be a positive integer, not '$steps'" >&2
+    exit 2
+fi
+
+liggghts=${LIGGGHTS:-$(command -v liggghts || true)}
+if [ -z "$liggghts" ] || [ ! -x "$liggghts" ]; then
+    echo "compareLiggghts.sh: LIGGGHTS is not installed (no executable '${liggghts:-liggghts}' on PATH)." >&2
+    echo "  Install Debian's package:  apt-get install -y liggghts" >&2
+    exit 1
+fi
+
+if [ -z "$bench" ]; then
+    bench=$(command -v spherePourBenchmark || true)
+    if [ -z "$bench" ]; then
+        echo "compareLiggghts.sh: spherePourBenchmark is not on PATH." >&2
+        echo "  Build it (./Allwmake, or cmake --build <build> --target spherePourBenchmark)" >&2
+        echo "  and source src/etc/bashrc, or give its path as the first argument." >&2
+        exit 1
+    fi
+fi
+if [ ! -x "$bench" ]; then
+    echo "compareLiggghts.sh: '$bench' is not an executable" >&2
+    exit 1
+fi
+if [ ! -f "$input" ]; then
+    echo "compareLiggghts.sh: the LIGGGHTS input '$input' is missing" >&2
+    exit 1
+fi
+
+run=$(mktemp -d "${TMPDIR:-/tmp}/compareLiggghts.XXXXXX")
+if [ "$keep" = 0 ]; then
+    trap 'rm -rf "$run"' EXIT
+fi
+
+now() { date +%s.%N; }
+
+echo "compareLiggghts: $steps steps of the 1000-sphere pour"
+echo "  LIGGGHTS: $liggghts ($(dpkg-query -W -f='${Version}' liggghts 2>/dev/null || echo '?'))"
+echo "  ours:     $bench"
+echo "  machine:  $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo
+
+# LIGGGHTS first (serial, one process), in the run directory
+echo "Running LIGGGHTS ..."
+t0=$(now)
+if ! (cd "$run" && "$liggghts" -in "$input" -var nsteps "$steps" -log "$run/log.liggghts" \
+        > "$run/liggghts.out" 2>&1); then
+    echo "compareLiggghts.sh: LIGGGHTS failed; its output:" >&2
+    tail -20 "$run/liggghts.out" >&2
+    exit 1
+fi
+t1=$(now)
+
+echo "Running spherePourBenchmark ..."
+t2=$(now)
+if ! (cd "$run" && "$bench" "$steps" > "$run/ours.out" 2>&1); then
+    echo "compareLiggghts.sh: spherePourBenchmark failed; its output:" >&2
+    tail -20 "$run/ours.out" >&2
+    exit 1
+fi
+t3=$(now)
+echo
+
+# LIGGGHTS: the last thermo line (step atoms keTrans keRot zMean zMax) and
+# "Loop time of X on 1 procs for N steps"
+read -r lStep lAtoms lKet lKer lZmean lZmax < <(
+    awk -v n="$steps" '$1 == n && NF == 6 { line = $0 } END { print line }' "$run/liggghts.out")
+lLoop=$(awk '/^Loop time of/ { t = $4 } END { print t }' "$run/liggghts.out")
+if [ -z "${lStep:-}" ] || [ -z "$lLoop" ]; then
+    echo "compareLiggghts.sh: could not read LIGGGHTS's output ($run/liggghts.out)" >&2
+    keep=1; trap - EXIT
+    exit 1
+fi
+
+# Ours: the RESULT line
+result=$(grep '^RESULT ' "$run/ours.out" | tail -1)
+field() { echo "$result" | tr ' ' '\n' | awk -F= -v k="$1" '$1 == k { print $2 }'; }
+oSteps=$(field steps); oLoop=$(field wall); oKet=$(field keTrans); oKer=$(field keRot)
+oZmean=$(field meanHeight); oZmax=$(field maxHeight); oLost=$(field lost)
+if [ -z "$oSteps" ] || [ -z "$oLoop" ]; then
+    echo "compareLiggghts.sh: could not read spherePourBenchmark's RESULT line ($run/ours.out)" >&2
+    keep=1; trap - EXIT
+    exit 1
+fi
+
+awk \
+    -v lSteps="$lStep" -v lAtoms="$lAtoms" -v t0="$t0" -v t1="$t1" -v lLoop="$lLoop" \
+    -v lKet="$lKet" -v lKer="$lKer" -v lZmean="$lZmean" -v lZmax="$lZmax" \
+    -v oSteps="$oSteps" -v oLost="$oLost" -v t2="$t2" -v t3="$t3" -v oLoop="$oLoop" \
+    -v oKet="$oKet" -v oKer="$oKer" -v oZmean="$oZmean" -v oZmax="$oZmax" \
+'BEGIN {
+    lProc = t1 - t0
+    oProc = t3 - t2
+    fmt = "%-12s %7s %9s %9s %10s %11s %10s %11s %11s\n"
+    printf fmt, "code", "steps", "wall [s]", "loop [s]", "steps/s", "zMean [mm]", "zMax [mm]", "KEt [J]", "KEr [J]"
+    row = "%-12s %7d %9.2f %9.2f %10.0f %11.4f %10.4f %11.3e %11.3e\n"
+    printf row, "LIGGGHTS", lSteps, lProc, lLoop, lSteps/lLoop, 1e3*lZmean, 1e3*lZmax, lKet, lKer
+    printf row, "immersedDEM", oSteps, oProc, oLoop, oSteps/oLoop, 1e3*oZmean, 1e3*oZmax, oKet, oKer
+    printf "\n"
+    printf "wall time ratio ours/LIGGGHTS: %.2f (whole process), %.2f (stepping loop)\n", oProc/lProc, oLoop/lLoop
+    printf "  wall: the process as timed here (start-up and set-up included);\n"
+    printf "  loop: each code'\''s own clock around its steps (LIGGGHTS'\''s \"Loop time\")\n"
+    printf "\n"
+    d = 100*(oZmean - lZmean)/lZmean
+    dm = 100*(oZmax - lZmax)/lZmax
+    tol = 2
+    printf "physical result (not asserted):\n"
+    printf "  mean height of the centres: ours %.4f mm, LIGGGHTS %.4f mm, difference %+.2f %% (%s %g %%)\n", \
+        1e3*oZmean, 1e3*lZmean, d, (d < tol && d > -tol) ? "within" : "NOT within", tol
+    printf "  max height of the centres:  ours %.4f mm, LIGGGHTS %.4f mm, difference %+.2f %%\n", \
+        1e3*oZmax, 1e3*lZmax, dm
+    printf "  spheres: LIGGGHTS %d in the domain; ours %d outside the box\n", lAtoms, oLost
+    printf "  final kinetic energy (residual of the settling pile; compare orders of magnitude):\n"
+    printf "    ours %.3e J, LIGGGHTS %.3e J\n", oKet + oKer, lKet + lKer
+}'
+
+if [ "$keep" = 1 ]; then
+    echo
+    echo "logs kept in $run (liggghts.out, log.liggghts, ours.out)"
+fi
