@@ -332,23 +332,3 @@ TEST(DemFriction, sphereRollsDownInclineHertzMindlin)
 
 
 // ************************************************************************* //
-TEST(DemFrictionDebug, slide2)
-{
-    auto dem = boxOnIncline(deg(35), 0.5);
-    for (int i = 0; i < 600; ++i)
-    {
-        const double dt = dem->timeStep();
-        dem->step(dt);
-        if (i % 10) continue;
-        const rigidBody& b = dem->bodies()[1];
-        std::printf("t %.5f dt %.2e x %.3e z %.6e vx %.3e vz %.3e wy %.3e nC %zu\n", dem->time(), dt,
-            b.pose.position().x(), b.pose.position().z(), b.velocity.x(), b.velocity.z(), b.angularVelocity.y(), dem->contacts().size());
-        for (const auto& c : dem->contacts())
-        {
-            std::printf("   V %.3e A %.3e n (%.3f %.3f %.3f) p (%.3e %.3e %.3e) fn %.3e ft (%.3e %.3e %.3e) slide %d\n",
-                c.region.volume, c.region.area, c.region.normal.x(), c.region.normal.y(), c.region.normal.z(),
-                c.region.point.x(), c.region.point.y(), c.region.point.z(),
-                c.force.normalForce, c.force.tangentialForce.x(), c.force.tangentialForce.y(), c.force.tangentialForce.z(), int(c.force.sliding));
-        }
-    }
-}
