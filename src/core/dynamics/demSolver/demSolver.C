@@ -79,33 +79,81 @@ double demSolver::effectiveRadius(int a, int b) const
 
 std::vector<std::pair<int, int>> demSolver::candidatePairs() const
 {
-    // Sweep and prune along x
     const int n = int(bodies_.size());
     std::vector<axisAlignedBox> box(n);
-    std::vector<int> order(n);
+    std::vector<int> walls, others;
+    double cell = 0;
     for (int i = 0; i < n; ++i)
     {
         box[i] = bodies_[i].geometry->worldBox(bodies_[i].pose);
-        order[i] = i;
-    }
-    std::sort
-    (
-        order.begin(), order.end(),
-        [&](int i, int j){ return box[i].min.x() < box[j].min.x(); }
-    );
-    std::vector<std::pair<int, int>> pairs;
-    for (int s = 0; s < n; ++s)
-    {
-        const int i = order[s];
-        for (int t = s + 1; t < n; ++t)
+        if (isWall_[i])
         {
-            const int j = order[t];
-            if (box[j].min.x() > box[i].max.x()) break;
-            if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
-            if (!box[i].overlaps(box[j])) continue;
-            // Walls (then lower indices) are A
-            const bool iFirst = isWall_[i] != isWall_[j] ? bool(isWall_[i]) : i < j;
-            pairs.emplace_back(iFirst ? i : j, iFirst ? j : i);
+            walls.push_back(i);
+        }
+        else
+        {
+            others.push_back(i);
+            cell = std::max(cell, box[i].span().maxCoeff());
+        }
+    }
+
+    std::vector<std::pair<int, int>> pairs;
+
+    // Walls (few, large) against every body that can move
+    for (const int w : walls)
+    {
+        for (const int i : others)
+        {
+            if (bodies_[i].dynamic() && box[w].overlaps(box[i]))
+            {
+                pairs.emplace_back(w, i);
+            }
+        }
+    }
+
+    // Bodies: a uniform grid of cells as large as the largest body, so a
+    // body's box spans at most 2 cells per axis. A pair is tested in the
+    // cell holding the lower corner of the two boxes' intersection only,
+    // so it is found once.
+    if (cell > 0)
+    {
+        using key = std::array<long, 3>;
+        auto index = [cell](const vec3& p)
+        {
+            return key
+            {
+                long(std::floor(p.x()/cell)), long(std::floor(p.y()/cell)),
+                long(std::floor(p.z()/cell))
+            };
+        };
+        // (cell, body) entries sorted by cell: the bodies of a cell are a run
+        std::vector<std::pair<key, int>> entries;
+        entries.reserve(8*others.size());
+        for (const int i : others)
+        {
+            const key lo = index(box[i].min), hi = index(box[i].max);
+            for (long x = lo[0]; x <= hi[0]; ++x)
+                for (long y = lo[1]; y <= hi[1]; ++y)
+                    for (long z = lo[2]; z <= hi[2]; ++z)
+                        entries.emplace_back(key{x, y, z}, i);
+        }
+        std::sort(entries.begin(), entries.end());
+        for (size_t first = 0; first < entries.size();)
+        {
+            size_t last = first;
+            while (last < entries.size() && entries[last].first == entries[first].first) ++last;
+            for (size_t s = first; s < last; ++s)
+            {
+                for (size_t t = s + 1; t < last; ++t)
+                {
+                    const int i = entries[s].second, j = entries[t].second;
+                    if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
+                    if (!box[i].overlaps(box[j])) continue;
+                    if (index(box[i].min.cwiseMax(box[j].min)) != entries[first].first) continue;
+                    pairs.emplace_back(i, j);
+                }
+            }
+            first = last;
         }
     }
     std::sort(pairs.begin(), pairs.end());

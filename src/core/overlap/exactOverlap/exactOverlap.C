@@ -1,6 +1,7 @@
 #include "exactOverlap.H"
 #include "coreError.H"
 #include "floatingPointGuard.H"
+#include "overlapTools.H"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -194,18 +195,14 @@ contactGeometry exactOverlap::evaluate
         }
         else
         {
-            r.normal = centreLine.norm() > 0 ? vec3(centreLine.normalized()) : vec3(vec3::UnitX());
+            r.normal = overlapTools::firstDirection({centreLine});
             r.area = 0;
         }
         g.regions.push_back(r);
     }
 
     // A deterministic order: largest region first
-    std::sort
-    (
-        g.regions.begin(), g.regions.end(),
-        [](const contactRegion& x, const contactRegion& y){ return x.volume > y.volume; }
-    );
+    overlapTools::sortLargestFirst(g.regions, false);
     return g;
 }
 

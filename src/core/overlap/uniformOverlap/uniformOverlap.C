@@ -1,13 +1,8 @@
 #include "uniformOverlap.H"
-#include "coreError.H"
+#include "overlapTools.H"
 
-#include <Eigen/Eigenvalues>
-
-#include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
-#include <unordered_set>
 
 namespace immersedDEM
 {
@@ -15,7 +10,7 @@ namespace immersedDEM
 namespace
 {
 
-using cellIndex = std::array<long, 3>;
+using overlapTools::cellIndex;
 
 // A sub-volume's state: checked, in A, in B, reached by a fill, and
 // whether it has a face neighbour only in A, only in B
@@ -246,79 +241,34 @@ public:
 };
 
 
-// Union-find over the base cells that hold overlap
-struct disjointSets
-{
-    std::vector<int> parent;
-    explicit disjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    int find(int i) { while (parent[i] != i) i = parent[i] = parent[parent[i]]; return i; }
-    void join(int i, int j) { parent[find(i)] = find(j); }
-};
-
-
 vec3 regionNormal(const cellSum& r, const vec3& centreLine)
 {
     // Zero for a closed surface (a body inside the other), up to round-off
-    vec3 ref = r.faceSum.norm() > 1e-9*r.faceArea ? r.faceSum : vec3(vec3::Zero());
-    if (!(ref.norm() > 0) && r.nOnlyA > 0 && r.nOnlyB > 0)
-    {
-        ref = r.onlyBSum/double(r.nOnlyB) - r.onlyASum/double(r.nOnlyA);
-    }
-    if (!(ref.norm() > 0)) ref = centreLine;
-    ref = ref.norm() > 0 ? vec3(ref.normalized()) : vec3(vec3::UnitX());
+    const vec3 faces = r.faceSum.norm() > 1e-9*r.faceArea ? r.faceSum : vec3(vec3::Zero());
+    const vec3 sides = r.nOnlyA > 0 && r.nOnlyB > 0
+        ? vec3(r.onlyBSum/double(r.nOnlyB) - r.onlyASum/double(r.nOnlyA))
+        : vec3(vec3::Zero());
+    const vec3 ref = overlapTools::firstDirection({faces, sides, centreLine});
 
-    const std::vector<vec3>& pts = r.edgePoints;
-    if (pts.size() >= 3)
-    {
-        vec3 mean = vec3::Zero();
-        for (const vec3& p : pts) mean += p;
-        mean /= double(pts.size());
-        mat3 C = mat3::Zero();
-        for (const vec3& p : pts) C += (p - mean)*(p - mean).transpose();
-        Eigen::SelfAdjointEigenSolver<mat3> eig(C);
-        const vec3 l = eig.eigenvalues();
-        if (l(2) > 0 && l(1) > 1e-6*l(2))
-        {
-            const vec3 nrm = eig.eigenvectors().col(0).normalized();
-            if (nrm.allFinite())
-            {
-                return nrm.dot(ref) < 0 ? vec3(-nrm) : nrm;
-            }
-        }
-    }
-    return ref;
+    // Determined: not collinear
+    overlapTools::planeFitCriteria plane;
+    plane.minSpread = 1e-6;
+    vec3 n = ref;
+    overlapTools::fitPlaneNormal(r.edgePoints, ref, plane, n);
+    return n;
 }
 
 
 double projectedArea(const cellSum& r, const vec3& n, double h, int nSub)
 {
-    const double pixel = h/nSub;
-    const vec3 t1 = n.unitOrthogonal();
-    const vec3 t2 = n.cross(t1);
-    std::unordered_set<long long> pixels;
-    auto mark = [&](const vec3& x)
-    {
-        const long long i = std::llround(x.dot(t1)/pixel);
-        const long long j = std::llround(x.dot(t2)/pixel);
-        pixels.insert((i << 32) ^ (j & 0xffffffffLL));
-    };
-    for (const vec3& x : r.commons) mark(x);
+    overlapTools::projectedPixels pixels(n, h/nSub);
+    for (const vec3& x : r.commons) pixels.mark(x);
     for (const vec3& lo : r.fullCells)
     {
         // A cube's shadow is its boundary's: the outer layer of sub-volumes
-        for (int l = 0; l < nSub; ++l)
-        {
-            for (int j = 0; j < nSub; ++j)
-            {
-                const bool rim = (l == 0 || l == nSub - 1 || j == 0 || j == nSub - 1);
-                for (int i = 0; i < nSub; i += (rim ? 1 : std::max(1, nSub - 1)))
-                {
-                    mark(lo + pixel*vec3(i + 0.5, j + 0.5, l + 0.5));
-                }
-            }
-        }
+        pixels.markCube(lo, nSub);
     }
-    return double(pixels.size())*pixel*pixel;
+    return pixels.area();
 }
 
 } // End anonymous namespace
@@ -333,33 +283,16 @@ contactGeometry uniformOverlap::evaluate
 {
     const double h = settings.h;
     const int L = settings.level;
-    if (!(std::isfinite(h) && h > 0))
-    {
-        throw coreError("uniform: the base cell size h must be positive, not " + std::to_string(h));
-    }
-    if (L < 0 || L > maxLevel)
-    {
-        throw coreError
-        (
-            "uniform: the level must be in [0, " + std::to_string(maxLevel) + "], not "
-          + std::to_string(L)
-        );
-    }
+    overlapTools::checkCellSize(type(), h);
+    overlapTools::checkLevel(type(), L, maxLevel);
     const int n = 1 << L;
     const double s = h/n;
 
     contactGeometry g;
-    const axisAlignedBox box = A.worldBox(pA).intersection(B.worldBox(pB));
+    const axisAlignedBox box = overlapTools::commonBox(A, pA, B, pB);
     if (box.empty())
     {
         return g;
-    }
-
-    cellIndex lo, hi;
-    for (int d = 0; d < 3; ++d)
-    {
-        lo[d] = long(std::floor(box.min[d]/h));
-        hi[d] = long(std::floor(box.max[d]/h));
     }
 
     const double r = 0.5*std::sqrt(3.0)*h;
@@ -368,46 +301,38 @@ contactGeometry uniformOverlap::evaluate
     std::map<cellIndex, cellSum> sides;             // contact cells without
     std::map<cellIndex, boundaryLayers> layers;     // all contact cells
     long queries = 0, leaves = 0;
-    for (long i = lo[0]; i <= hi[0]; ++i)
-    {
-        for (long j = lo[1]; j <= hi[1]; ++j)
+    overlapTools::forEachLatticeCell
+    (
+        overlapTools::latticeRange(box, h), h,
+        [&](const cellIndex& ci, const vec3& corner)
         {
-            for (long k = lo[2]; k <= hi[2]; ++k)
-            {
-                ++leaves;
-                const vec3 corner(i*h, j*h, k*h);
-                const vec3 c = corner + vec3::Constant(0.5*h);
-                ++queries;
-                const double dA = A.signedDistance(pA, c);
-                if (dA > r) continue;
-                ++queries;
-                const double dB = B.signedDistance(pB, c);
-                if (dB > r) continue;
+            ++leaves;
+            const vec3 c = corner + vec3::Constant(0.5*h);
+            double dA, dB;
+            if (!overlapTools::screenCell(A, pA, B, pB, c, r, dA, dB, queries)) return;
 
-                const cellIndex ci{i, j, k};
-                cellSum cs;
-                if (dA < -r && dB < -r)
-                {
-                    const double v = h*h*h;
-                    cs.volume = v;
-                    cs.first = v*c;
-                    cs.fullCells.push_back(corner);
-                }
-                else
-                {
-                    cellFill.evaluate(corner, h, cs, layers[ci]);
-                }
-                if (cs.volume > 0)
-                {
-                    sums.emplace(ci, std::move(cs));
-                }
-                else if (cs.nOnlyA + cs.nOnlyB > 0)
-                {
-                    sides.emplace(ci, std::move(cs));
-                }
+            cellSum cs;
+            if (dA < -r && dB < -r)
+            {
+                const double v = h*h*h;
+                cs.volume = v;
+                cs.first = v*c;
+                cs.fullCells.push_back(corner);
+            }
+            else
+            {
+                cellFill.evaluate(corner, h, cs, layers[ci]);
+            }
+            if (cs.volume > 0)
+            {
+                sums.emplace(ci, std::move(cs));
+            }
+            else if (cs.nOnlyA + cs.nOnlyB > 0)
+            {
+                sides.emplace(ci, std::move(cs));
             }
         }
-    }
+    );
     g.queries = queries + cellFill.queries;
     g.leaves = leaves + cellFill.leaves;
     if (sums.empty())
@@ -531,54 +456,20 @@ contactGeometry uniformOverlap::evaluate
     // Regions: base cells joined across faces, edges and corners (at a
     // low level the sampled overlap of a thin contact is often connected
     // only diagonally)
-    std::map<cellIndex, int> id;
-    for (const auto& e : sums)
-    {
-        const int next = int(id.size());
-        id[e.first] = next;
-    }
-    disjointSets sets(int(id.size()));
-    for (const auto& e : id)
-    {
-        for (int a = -1; a <= 1; ++a)
-        {
-            for (int b = -1; b <= 1; ++b)
-            {
-                for (int c = -1; c <= 1; ++c)
-                {
-                    const cellIndex nb{e.first[0] + a, e.first[1] + b, e.first[2] + c};
-                    const auto it = id.find(nb);
-                    if (it != id.end()) sets.join(e.second, it->second);
-                }
-            }
-        }
-    }
+    overlapTools::cellRegions sets(sums, overlapTools::cellJoin::facesEdgesCorners);
 
     std::map<int, cellSum> regions;
     for (const auto& e : sums)
     {
-        regions[sets.find(id.at(e.first))].add(e.second);
+        regions[sets.label(e.first)].add(e.second);
     }
 
     // A contact cell with no overlap next to a region still tells on which
     // side A and B are
     for (const auto& e : sides)
     {
-        bool done = false;
-        for (int a = -1; a <= 1 && !done; ++a)
-        {
-            for (int b = -1; b <= 1 && !done; ++b)
-            {
-                for (int c = -1; c <= 1 && !done; ++c)
-                {
-                    const cellIndex nb{e.first[0] + a, e.first[1] + b, e.first[2] + c};
-                    const auto it = id.find(nb);
-                    if (it == id.end()) continue;
-                    regions[sets.find(it->second)].addSides(e.second);
-                    done = true;
-                }
-            }
-        }
+        const int near = sets.labelNear(e.first);
+        if (near >= 0) regions[near].addSides(e.second);
     }
 
     const vec3 centreLine = pB.position() - pA.position();
@@ -592,11 +483,7 @@ contactGeometry uniformOverlap::evaluate
         cr.area = projectedArea(rs, cr.normal, h, n);
         g.regions.push_back(cr);
     }
-    std::stable_sort
-    (
-        g.regions.begin(), g.regions.end(),
-        [](const contactRegion& x, const contactRegion& y){ return x.volume > y.volume; }
-    );
+    overlapTools::sortLargestFirst(g.regions, true);
     return g;
 }
 

@@ -1,13 +1,10 @@
 #include "virtualMeshOverlap.H"
-#include "coreError.H"
+#include "overlapTools.H"
 
-#include <Eigen/Eigenvalues>
-
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
-#include <unordered_set>
 
 namespace immersedDEM
 {
@@ -15,7 +12,7 @@ namespace immersedDEM
 namespace
 {
 
-using cellIndex = std::array<long, 3>;
+using overlapTools::cellIndex;
 
 // What one base cell contributes
 struct baseCellSum
@@ -257,16 +254,6 @@ public:
 };
 
 
-// Union-find over the base cells that hold overlap
-struct disjointSets
-{
-    std::vector<int> parent;
-    explicit disjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    int find(int i) { while (parent[i] != i) i = parent[i] = parent[parent[i]]; return i; }
-    void join(int i, int j) { parent[find(i)] = find(j); }
-};
-
-
 vec3 regionNormal
 (
     const std::vector<vec3>& edgePoints,
@@ -275,27 +262,18 @@ vec3 regionNormal
 )
 {
     // The orientation reference: continuous in the pose
-    vec3 ref = areaVector.norm() > 0 ? vec3(areaVector.normalized())
-        : centreLine.norm() > 0 ? vec3(centreLine.normalized()) : vec3(vec3::UnitX());
+    const vec3 ref = overlapTools::firstDirection({areaVector, centreLine});
 
-    if (edgePoints.size() >= 3)
-    {
-        vec3 mean = vec3::Zero();
-        for (const vec3& p : edgePoints) mean += p;
-        mean /= double(edgePoints.size());
-        mat3 C = mat3::Zero();
-        for (const vec3& p : edgePoints) C += (p - mean)*(p - mean).transpose();
-        Eigen::SelfAdjointEigenSolver<mat3> eig(C);
-        const vec3 l = eig.eigenvalues();
-        if (l(2) > 0 && l(1) > 1e-6*l(2) && l(0) < 0.25*l(1))
-        {
-            vec3 n = eig.eigenvectors().col(0).normalized();
-            return n.dot(ref) < 0 ? vec3(-n) : n;
-        }
-    }
-    return ref;
+    // Determined: not collinear, and the smallest spread clearly below
+    // the other two
+    overlapTools::planeFitCriteria plane;
+    plane.minSpread = 1e-6;
+    plane.maxFlatness = 0.25;
+    plane.requireFinite = false;
+    vec3 n = ref;
+    overlapTools::fitPlaneNormal(edgePoints, ref, plane, n);
+    return n;
 }
-
 
 } // End anonymous namespace
 
@@ -309,17 +287,11 @@ contactGeometry virtualMeshOverlap::evaluate
 {
     const double h = settings.h;
     const int L = settings.level;
-    if (!(std::isfinite(h) && h > 0))
-    {
-        throw coreError("virtualMesh: the base cell size h must be positive, not " + std::to_string(h));
-    }
-    if (L < 0 || L > 10)
-    {
-        throw coreError("virtualMesh: the level must be in [0, 10], not " + std::to_string(L));
-    }
+    overlapTools::checkCellSize(type(), h);
+    overlapTools::checkLevel(type(), L, 10);
 
     contactGeometry g;
-    const axisAlignedBox box = A.worldBox(pA).intersection(B.worldBox(pB));
+    const axisAlignedBox box = overlapTools::commonBox(A, pA, B, pB);
     if (box.empty())
     {
         return g;
@@ -334,25 +306,17 @@ contactGeometry virtualMeshOverlap::evaluate
         ++m;
     }
     const double H = h*double(1L << m);
-    cellIndex lo, hi;
-    for (int d = 0; d < 3; ++d)
-    {
-        lo[d] = long(std::floor(box.min[d]/H));
-        hi[d] = long(std::floor(box.max[d]/H));
-    }
 
     octreeWalk walk(A, pA, B, pB, h, L);
     const double noBound = std::numeric_limits<double>::max();
-    for (long i = lo[0]; i <= hi[0]; ++i)
-    {
-        for (long j = lo[1]; j <= hi[1]; ++j)
+    overlapTools::forEachLatticeCell
+    (
+        overlapTools::latticeRange(box, H), H,
+        [&](const cellIndex&, const vec3& corner)
         {
-            for (long k = lo[2]; k <= hi[2]; ++k)
-            {
-                walk.visit(vec3(i*H, j*H, k*H), H, -m, false, false, noBound, noBound, nullptr);
-            }
+            walk.visit(corner, H, -m, false, false, noBound, noBound, nullptr);
         }
-    }
+    );
     std::map<cellIndex, baseCellSum> sums;
     for (auto& e : walk.sums)
     {
@@ -369,29 +333,12 @@ contactGeometry virtualMeshOverlap::evaluate
     }
 
     // Regions: base cells joined across faces
-    std::vector<const cellIndex*> keys;
-    std::map<cellIndex, int> id;
-    for (const auto& e : sums)
-    {
-        id[e.first] = int(keys.size());
-        keys.push_back(&e.first);
-    }
-    disjointSets sets(int(keys.size()));
-    for (const auto& e : id)
-    {
-        for (int d = 0; d < 3; ++d)
-        {
-            cellIndex nb = e.first;
-            ++nb[d];
-            const auto it = id.find(nb);
-            if (it != id.end()) sets.join(e.second, it->second);
-        }
-    }
+    overlapTools::cellRegions sets(sums, overlapTools::cellJoin::faces);
 
     std::map<int, baseCellSum> regions;
     for (const auto& e : sums)
     {
-        baseCellSum& r = regions[sets.find(id[e.first])];
+        baseCellSum& r = regions[sets.label(e.first)];
         const baseCellSum& s = e.second;
         r.volume += s.volume;
         r.first += s.first;
@@ -411,11 +358,7 @@ contactGeometry virtualMeshOverlap::evaluate
         g.regions.push_back(cr);
     }
     // A deterministic order: largest region first
-    std::sort
-    (
-        g.regions.begin(), g.regions.end(),
-        [](const contactRegion& x, const contactRegion& y){ return x.volume > y.volume; }
-    );
+    overlapTools::sortLargestFirst(g.regions, false);
     return g;
 }
 
