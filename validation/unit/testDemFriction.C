@@ -154,13 +154,13 @@ std::shared_ptr<const triangleMeshShape> boxShape()
 // virtual mesh (h = 2.5 mm, level 2: leaves of 0.6 mm). The leaves' tangent
 // planes integrate the flat part of the contact exactly, but a leaf whose
 // centre lies nearest the box's bottom edge takes the edge's tangent plane
-// (a 45 degree supporting plane) and counts a sliver of phantom overlap of
-// roughly (leaf size)^2/64 per length of edge, whatever the depth, with a
-// normal tilted towards the edge. Against a stiff floor (Y = 1e6 Pa, 1 um
-// deep) that is comparable to the true overlap or larger: as the box pitches under
-// the friction's torque, a phantom region at the lifted edge, tilted by
-// 0.3 rad, pushes the box back and it stops dead. Soft enough, the phantom
-// is a few per cent of the overlap and its tilt averages out.
+// (a supporting plane at an angle) and counts a sliver of phantom overlap
+// of roughly (leaf size)^2/64 per length of edge, whatever the depth, which
+// comes and goes as the box slides across the lattice. Against a stiff
+// floor (Y = 1e6 Pa, 1 um deep) that is several times the true overlap: the
+// normal force jumps, the box chatters off the floor and slides 20 % (level
+// 2) to 120 % (level 1) too fast. Soft, the phantom is a few per cent of
+// the overlap and averages out.
 const double boxY = 3e4;
 const overlapSettings boxOverlap{2.5e-3, 2};
 
