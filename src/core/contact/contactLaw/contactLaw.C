@@ -1,6 +1,6 @@
 #include "contactLaw.H"
 #include "coreError.H"
-#include "volumeContactLaw.H"
+#include "overlapVolumeContactLaw.H"
 #include "hertzMindlinContactLaw.H"
 
 #include <functional>
@@ -16,7 +16,7 @@ const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>>& table
 {
     static const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>> t
     {
-        {"volume", []{ return std::unique_ptr<contactLaw>(new volumeContactLaw()); }},
+        {"volume", []{ return std::unique_ptr<contactLaw>(new overlapVolumeContactLaw()); }},
         {"hertzMindlin", []{ return std::unique_ptr<contactLaw>(new hertzMindlinContactLaw()); }}
     };
     return t;

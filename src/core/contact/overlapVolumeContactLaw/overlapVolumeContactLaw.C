@@ -1,4 +1,4 @@
-#include "volumeContactLaw.H"
+#include "overlapVolumeContactLaw.H"
 #include "restitutionCalibration.H"
 
 #include <algorithm>
@@ -7,7 +7,7 @@
 namespace immersedDEM
 {
 
-contactOutput volumeContactLaw::evaluate(const contactInput& in, contactHistory& h) const
+contactOutput overlapVolumeContactLaw::evaluate(const contactInput& in, contactHistory& h) const
 {
     const contactRegion& r = in.region;
     const double Y = in.material.effectiveModulus;
@@ -43,7 +43,7 @@ contactOutput volumeContactLaw::evaluate(const contactInput& in, contactHistory&
 }
 
 
-double volumeContactLaw::contactTime
+double overlapVolumeContactLaw::contactTime
 (
     const pairMaterial& m, double effectiveMass, double effectiveRadius,
     double characteristicLength, double v
