@@ -5,11 +5,36 @@
 #include "indexedOctree.H"
 #include "treeDataCell.H"
 #include "treeBoundBox.H"
+#include "OFstream.H"
+#include "IFstream.H"
+#include "OSspecific.H"
+#include "clockTime.H"
+
+using namespace immersedDEM;
 
 namespace Foam
 {
     defineTypeNameAndDebug(immersedDEMState, 0);
 }
+
+
+namespace
+{
+
+using Foam::vector;
+using Foam::word;
+
+Foam::vector v(const vec3& x)
+{
+    return Foam::immersedDEMReader::toFoam(x);
+}
+
+vec3 c(const Foam::vector& x)
+{
+    return Foam::immersedDEMReader::toCore(x);
+}
+
+} // End anonymous namespace
 
 
 Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
@@ -63,24 +88,51 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     Info<< "immersedDEM: reading " << properties_.objectPath() << endl;
     dem_ = immersedDEMReader::read
     (
-        properties_, mesh.time().constant()/"triSurface", g.value()
+        properties_, mesh.time().constant()/"triSurface", g.value(), &mesh
     );
+    dem_->setTime(mesh.time().value());
     Info<< "immersedDEM: " << nBodies() << " bodies, "
         << dem_->materials().size() << " materials" << endl;
-    const label n = project();
-    Info<< "immersedDEM: projected on " << returnReduce(n, sumOp<label>())
+
+    const label n = dem_->bodies().size();
+    innerMomentum_.setSize(n, Zero);
+    innerAngularMomentum_.setSize(n, Zero);
+
+    restarted_ = readRestart();
+
+    const label nCells = project();
+    Info<< "immersedDEM: projected on " << returnReduce(nCells, sumOp<label>())
         << " cells" << nl << endl;
+
+    if (!restarted_)
+    {
+        // The fluid inside a body starts with the body: its momentum is
+        // the rigid one, so the first step sees no spurious inner term
+        for (label i = 0; i < n; ++i)
+        {
+            const rigidBody& b = dem_->bodies()[i];
+            if (dem_->isWall(i)) continue;
+            innerMomentum_[i] = v(b.mass()/b.density*b.velocity);
+            innerAngularMomentum_[i] =
+                v(b.worldInertia()*b.angularVelocity/b.density);
+        }
+    }
 }
+
+
+Foam::immersedDEMState::~immersedDEMState() = default;
 
 
 Foam::label Foam::immersedDEMState::project()
 {
-    using namespace immersedDEM;
+    const clockTime timer;
 
     scalarField& lambda = lambda_.primitiveFieldRef();
     vectorField& Uib = Uib_.primitiveFieldRef();
     lambda = 0;
     Uib = Zero;
+    bodyOf_.setSize(mesh_.nCells());
+    bodyOf_ = -1;
 
     const indexedOctree<treeDataCell>& tree = mesh_.cellTree();
     const pointField& points = mesh_.points();
@@ -94,11 +146,7 @@ Foam::label Foam::immersedDEMState::project()
         if (dem_->isWall(int(bi))) continue;
         const rigidBody& b = bodies[bi];
         const axisAlignedBox wb = b.geometry->worldBox(b.pose);
-        const treeBoundBox bb
-        (
-            point(wb.min.x(), wb.min.y(), wb.min.z()),
-            point(wb.max.x(), wb.max.y(), wb.max.z())
-        );
+        const treeBoundBox bb(v(wb.min), v(wb.max));
         for (const label i : tree.findBox(bb))
         {
             const label celli = tree.shapes().cellLabels()[i];
@@ -107,7 +155,7 @@ Foam::label Foam::immersedDEMState::project()
             vec3 lo = vec3::Constant(GREAT), hi = vec3::Constant(-GREAT);
             for (const label pi : cellPoints[celli])
             {
-                const vec3 p = immersedDEMReader::toCore(points[pi]);
+                const vec3 p = c(points[pi]);
                 lo = lo.cwiseMin(p);
                 hi = hi.cwiseMax(p);
             }
@@ -116,20 +164,282 @@ Foam::label Foam::immersedDEMState::project()
             {
                 if (lambda[celli] == 0) ++nCells;
                 lambda[celli] = f;
-                Uib[celli] = immersedDEMReader::toFoam
-                (
-                    b.pointVelocity(immersedDEMReader::toCore(C[celli]))
-                );
+                bodyOf_[celli] = label(bi);
+                Uib[celli] = v(b.pointVelocity(c(C[celli])));
             }
         }
     }
     lambda_.correctBoundaryConditions();
     Uib_.correctBoundaryConditions();
+    projectedTimeIndex_ = mesh_.time().timeIndex();
+    projectionSeconds_ += timer.elapsedTime();
     return nCells;
 }
 
 
-Foam::immersedDEMState::~immersedDEMState() = default;
+void Foam::immersedDEMState::projectIfMeshChanged()
+{
+    if
+    (
+        bodyOf_.size() != mesh_.nCells()
+     || (mesh_.topoChanging() && projectedTimeIndex_ != mesh_.time().timeIndex())
+    )
+    {
+        const label n = project();
+        if (debug)
+        {
+            Info<< "immersedDEM: mesh changed, projected again on "
+                << returnReduce(n, sumOp<label>()) << " cells" << endl;
+        }
+    }
+}
+
+
+Foam::tmp<Foam::scalarField>
+Foam::immersedDEMState::forcingCoefficient(scalar deltaT) const
+{
+    const scalarField& lambda = lambda_.primitiveField();
+    tmp<scalarField> tK(new scalarField(lambda.size(), Zero));
+    scalarField& K = tK.ref();
+    const scalar aMax = penalty_ > 0 ? penalty_ : 1e3;
+    forAll(lambda, celli)
+    {
+        const scalar l = lambda[celli];
+        if (l > 0)
+        {
+            K[celli] = (l*(1 + aMax) >= aMax ? aMax : l/(1 - l))/deltaT;
+        }
+    }
+    return tK;
+}
+
+
+void Foam::immersedDEMState::fluidSums
+(
+    const volVectorField& U,
+    const scalarField& K,
+    List<vector>& penalty,
+    List<vector>& penaltyMoment,
+    List<vector>& momentum,
+    List<vector>& angularMomentum
+) const
+{
+    const label n = dem_->bodies().size();
+    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    {
+        l->setSize(n);
+        *l = Zero;
+    }
+    const scalarField& V = mesh_.V();
+    const vectorField& C = mesh_.cellCentres();
+    const scalarField& lambda = lambda_.primitiveField();
+    const vectorField& Uib = Uib_.primitiveField();
+    forAll(bodyOf_, celli)
+    {
+        const label i = bodyOf_[celli];
+        if (i < 0) continue;
+        const scalar w = lambda[celli]*V[celli];
+        const vector r = C[celli] - v(dem_->bodies()[i].pose.position());
+        const vector d = K[celli]*V[celli]*(U[celli] - Uib[celli]);
+        const vector m = w*U[celli];
+        penalty[i] += d;
+        penaltyMoment[i] += r ^ d;
+        momentum[i] += m;
+        angularMomentum[i] += r ^ m;
+    }
+    // Summed on the master, the sums sent back: every rank holds the same
+    // bits, so the replicated DEMs stay identical
+    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    {
+        Pstream::listCombineGather(*l, plusEqOp<vector>());
+        Pstream::listCombineScatter(*l);
+    }
+}
+
+
+void Foam::immersedDEMState::fluidLoads
+(
+    const volVectorField& U,
+    scalar rho,
+    scalar deltaT
+)
+{
+    const clockTime timer;
+    List<vector> P, PM, M, L;
+    fluidSums(U, forcingCoefficient(deltaT)(), P, PM, M, L);
+    const vector g = v(dem_->settings().gravity);
+    auto& bodies = dem_->bodies();
+    forAll(M, i)
+    {
+        if (dem_->isWall(i)) continue;
+        rigidBody& b = bodies[i];
+        const scalar Vb = b.geometry->volume();
+        const vector F =
+            rho*(P[i] + (M[i] - innerMomentum_[i])/deltaT) - rho*Vb*g;
+        const vector T =
+            rho*(PM[i] + (L[i] - innerAngularMomentum_[i])/deltaT);
+        b.fluidForce = c(F);
+        b.fluidTorque = c(T);
+        innerMomentum_[i] = M[i];
+        innerAngularMomentum_[i] = L[i];
+    }
+    forcingSeconds_ += timer.elapsedTime();
+}
+
+
+void Foam::immersedDEMState::takeTimings(scalar& projection, scalar& forcing)
+{
+    projection = projectionSeconds_;
+    forcing = forcingSeconds_;
+    projectionSeconds_ = 0;
+    forcingSeconds_ = 0;
+}
+
+
+Foam::fileName Foam::immersedDEMState::restartFile(const fileName& timePath) const
+{
+    return timePath/"uniform"/"immersedDEM"/"state";
+}
+
+
+void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
+{
+    const fileName file = restartFile(timePath);
+    mkDir(file.path());
+    const fileName tmp = file + ".tmp";
+    {
+        OFstream os(tmp);
+        os.precision(17);
+        os  << "// immersedDEM restart state: body states, fluid momenta inside"
+            << " the bodies and contact histories" << nl << nl;
+        os.writeEntry("time", dem_->time());
+        os  << nl << "bodies" << nl << token::BEGIN_BLOCK << incrIndent << nl;
+        forAll(dem_->bodies(), i)
+        {
+            const rigidBody& b = dem_->bodies()[i];
+            const quat& q = b.pose.orientation();
+            os.beginBlock(word(b.name));
+            os.writeEntry("position", v(b.pose.position()));
+            os.writeEntry("orientation", List<scalar>({q.w(), q.x(), q.y(), q.z()}));
+            os.writeEntry("velocity", v(b.velocity));
+            os.writeEntry("angularVelocity", v(b.angularVelocity));
+            os.writeEntry("fluidForce", v(b.fluidForce));
+            os.writeEntry("fluidTorque", v(b.fluidTorque));
+            os.writeEntry("innerMomentum", innerMomentum_[i]);
+            os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
+            os.endBlock();
+        }
+        os  << decrIndent << token::END_BLOCK << nl << nl;
+        os  << "contacts" << nl << token::BEGIN_BLOCK << incrIndent << nl;
+        label k = 0;
+        for (const auto& pair : dem_->histories())
+        {
+            for (const contactHistory& h : pair.second)
+            {
+                os.beginBlock(word("contact" + Foam::name(k++)));
+                os.writeEntry("bodyA", word(dem_->bodies()[pair.first.first].name));
+                os.writeEntry("bodyB", word(dem_->bodies()[pair.first.second].name));
+                os.writeEntry("tangentialSpring", v(h.tangentialSpring));
+                os.writeEntry("normal", v(h.normal));
+                os.writeEntry("point", v(h.point));
+                os.writeEntry("approach", h.approach);
+                os.writeEntry("maxNormalForce", h.maxNormalForce);
+                os.endBlock();
+            }
+        }
+        os  << decrIndent << token::END_BLOCK << nl;
+        if (!os.good())
+        {
+            FatalErrorInFunction
+                << "Could not write " << tmp << exit(FatalError);
+        }
+    }
+    if (!Foam::mv(tmp, file))
+    {
+        FatalErrorInFunction
+            << "Could not rename " << tmp << " to " << file << exit(FatalError);
+    }
+}
+
+
+bool Foam::immersedDEMState::readRestart()
+{
+    const fileName file = restartFile(mesh_.time().timePath());
+    if (!isFile(file))
+    {
+        return false;
+    }
+    Info<< "immersedDEM: restarting from " << file << endl;
+    IFstream is(file);
+    const dictionary dict(is);
+
+    auto& bodies = dem_->bodies();
+    std::map<std::string, int> index;
+    forAll(bodies, i)
+    {
+        index[bodies[i].name] = i;
+    }
+    auto bodyIndex = [&](const dictionary& d, const word& key)
+    {
+        const word name = d.get<word>(key);
+        const auto it = index.find(name);
+        if (it == index.end())
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword '" << key << "' in " << d.name() << ": no body or wall '"
+                << name << "' in " << properties_.objectPath() << nl
+                << exit(FatalIOError);
+        }
+        return it->second;
+    };
+
+    const dictionary& bd = dict.subDict("bodies");
+    forAll(bodies, i)
+    {
+        rigidBody& b = bodies[i];
+        const dictionary* dp = bd.findDict(b.name);
+        if (!dp)
+        {
+            FatalIOErrorInFunction(bd)
+                << "No state for body '" << b.name << "' in " << file
+                << ": the bodies of " << properties_.objectPath()
+                << " must be those of the run that wrote it" << nl
+                << exit(FatalIOError);
+        }
+        const dictionary& d = *dp;
+        const List<scalar> q(d.get<List<scalar>>("orientation"));
+        if (q.size() != 4)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword 'orientation' in " << d.name()
+                << " must be a quaternion (w x y z)" << nl << exit(FatalIOError);
+        }
+        b.pose = bodyPose(c(d.get<vector>("position")), quat(q[0], q[1], q[2], q[3]));
+        b.velocity = c(d.get<vector>("velocity"));
+        b.angularVelocity = c(d.get<vector>("angularVelocity"));
+        b.fluidForce = c(d.get<vector>("fluidForce"));
+        b.fluidTorque = c(d.get<vector>("fluidTorque"));
+        innerMomentum_[i] = d.get<vector>("innerMomentum");
+        innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
+    }
+
+    std::map<std::pair<int, int>, std::vector<contactHistory>> histories;
+    const dictionary& cd = dict.subDict("contacts");
+    for (const entry& e : cd)
+    {
+        const dictionary& d = e.dict();
+        contactHistory h;
+        h.tangentialSpring = c(d.get<vector>("tangentialSpring"));
+        h.normal = c(d.get<vector>("normal"));
+        h.point = c(d.get<vector>("point"));
+        h.approach = d.get<scalar>("approach");
+        h.maxNormalForce = d.get<scalar>("maxNormalForce");
+        histories[{bodyIndex(d, "bodyA"), bodyIndex(d, "bodyB")}].push_back(h);
+    }
+    dem_->setHistories(std::move(histories));
+    dem_->setTime(dict.get<scalar>("time"));
+    return true;
+}
 
 
 Foam::label Foam::immersedDEMState::nBodies() const
@@ -137,7 +447,7 @@ Foam::label Foam::immersedDEMState::nBodies() const
     label n = 0;
     for (size_t i = 0; i < dem_->bodies().size(); ++i)
     {
-        if (!dem_->isWall(int(i))) ++n;
+        if (!dem_->isWall(i)) ++n;
     }
     return n;
 }

@@ -279,14 +279,8 @@ void demSolver::computeContacts()
     for (rigidBody& b : bodies_)
     {
         b.clearContactForces();
-        // Walls have infinite mass: no weight (and no inf*0 either)
-        b.externalForce = b.fluidForce;
-        if (b.dynamic())
-        {
-            b.externalForce += b.mass()*settings_.gravity;
-        }
-        b.externalTorque = b.fluidTorque;
     }
+    updateExternalLoads();
     contacts_.clear();
     std::map<std::pair<int, int>, std::vector<contactHistory>> next;
     for (const auto& p : candidatePairs())
@@ -297,6 +291,21 @@ void demSolver::computeContacts()
     forcesCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+
+void demSolver::updateExternalLoads()
+{
+    for (rigidBody& b : bodies_)
+    {
+        // Walls have infinite mass: no weight (and no inf*0 either)
+        b.externalForce = b.fluidForce;
+        if (b.dynamic())
+        {
+            b.externalForce += b.mass()*settings_.gravity;
+        }
+        b.externalTorque = b.fluidTorque;
+    }
 }
 
 
@@ -362,6 +371,8 @@ void demSolver::step(double dt)
         lastDt_ = 0;
         computeContacts();
     }
+    // The fluid loads may have changed since the contacts were computed
+    updateExternalLoads();
     lastDt_ = dt;
     for (rigidBody& b : bodies_)
     {

@@ -1,6 +1,9 @@
 #include "immersedDEM.H"
 #include "immersedDEMState.H"
 #include "dictionaryChecks.H"
+#include "demOutput.H"
+#include "coreError.H"
+#include "clockTime.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam
@@ -22,10 +25,32 @@ Foam::functionObjects::immersedDEM::immersedDEM
 :
     fvMeshFunctionObject(name, runTime, dict),
     state_(immersedDEMState::New(mesh_)),
-    rhoInf_(0)
+    rhoInf_(0),
+    UName_("U")
 {
     read(dict);
+    if (Pstream::master())
+    {
+        const fileName dir =
+            time_.globalPath()/"postProcessing"/name
+           /time_.timeName(time_.startTime().value());
+        try
+        {
+            output_.reset(new ::immersedDEM::demOutput(dir));
+            output_->writeBodies(time_.value(), state_.dem());
+            output_->writeVTK(time_.value(), state_.dem());
+        }
+        catch (const ::immersedDEM::coreError& err)
+        {
+            FatalErrorInFunction
+                << "Function object " << name << ": " << err.what()
+                << exit(FatalError);
+        }
+    }
 }
+
+
+Foam::functionObjects::immersedDEM::~immersedDEM() = default;
 
 
 bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
@@ -37,25 +62,91 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf"
+            "rhoInf", "U"
         }
     );
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
+    UName_ = dict.getOrDefault<word>("U", "U");
     return true;
 }
 
 
 bool Foam::functionObjects::immersedDEM::execute()
 {
-    ++nExecuted_;
-    Log << type() << ' ' << name() << ": time " << time_.timeName()
+    const scalar deltaT = time_.deltaTValue();
+
+    if (state_.penalty() > 0)
+    {
+        const volVectorField* U = mesh_.findObject<volVectorField>(UName_);
+        if (!U)
+        {
+            FatalErrorInFunction
+                << "Function object " << name() << ": no velocity field '"
+                << UName_ << "' (keyword U in system/controlDict)"
+                << exit(FatalError);
+        }
+        state_.fluidLoads(*U, rhoInf_, deltaT);
+    }
+    else if (!warnedNoForcing_)
+    {
+        WarningInFunction
+            << "Function object " << name() << ": no immersedBoundaryForce"
+            << " fvOption in constant/fvOptions: the bodies do not feel the"
+            << " fluid and the fluid does not see them" << endl;
+        warnedNoForcing_ = true;
+    }
+
+    label nSteps = 0;
+    const clockTime demTimer;
+    try
+    {
+        nSteps = state_.dem().advance(deltaT);
+    }
+    catch (const ::immersedDEM::coreError& err)
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << ", time " << time_.timeName()
+            << ": " << err.what() << exit(FatalError);
+    }
+    const scalar demSeconds = demTimer.elapsedTime();
+
+    state_.project();
+
+    scalar largest = 0;
+    for (const auto& c : state_.dem().contacts())
+    {
+        largest = max(largest, c.region.volume);
+    }
+    scalar projectionSeconds = 0, forcingSeconds = 0;
+    state_.takeTimings(projectionSeconds, forcingSeconds);
+    Log << type() << ' ' << name() << ": t " << time_.timeName()
         << ", bodies " << state_.nBodies()
-        << ", step " << nExecuted_ << endl;
+        << ", contacts " << state_.dem().contacts().size()
+        << ", DEM steps " << nSteps
+        << ", largest overlap " << largest << " m3"
+        << ", seconds: projection " << projectionSeconds
+        << " DEM " << demSeconds
+        << " forcing " << forcingSeconds << endl;
+
+    if (output_)
+    {
+        output_->writeBodies(time_.value(), state_.dem());
+        output_->writeContacts(time_.value(), state_.dem());
+    }
     return true;
 }
 
 
 bool Foam::functionObjects::immersedDEM::write()
 {
+    if (!time_.writeTime())
+    {
+        return true;
+    }
+    state_.writeRestart(time_.timePath());
+    if (output_)
+    {
+        output_->writeVTK(time_.value(), state_.dem());
+    }
     return true;
 }

@@ -4,6 +4,7 @@
 #include "fvMatrices.H"
 #include "fvmSup.H"
 #include "addToRunTimeSelectionTable.H"
+#include "clockTime.H"
 
 namespace Foam
 {
@@ -25,7 +26,7 @@ Foam::fv::immersedBoundaryForce::immersedBoundaryForce
 :
     option(name, modelType, dict, mesh),
     state_(immersedDEMState::New(mesh)),
-    penalty_(100)
+    penalty_(1000)
 {
     read(dict);
 }
@@ -47,7 +48,8 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
             << exit(FatalIOError);
     }
     applied_.setSize(fieldNames_.size(), false);
-    penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 100);
+    penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 1000);
+    state_.setPenalty(penalty_);
     return true;
 }
 
@@ -55,11 +57,17 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
 Foam::tmp<Foam::volScalarField::Internal>
 Foam::fv::immersedBoundaryForce::penaltyCoefficient() const
 {
-    const dimensionedScalar K
+    tmp<volScalarField::Internal> tK
     (
-        "K", dimless/dimTime, penalty_/mesh_.time().deltaTValue()
+        new volScalarField::Internal
+        (
+            IOobject("immersedBoundaryForce:K", mesh_.time().timeName(), mesh_),
+            mesh_,
+            dimensionedScalar(dimless/dimTime, Zero)
+        )
     );
-    return K*state_.lambda()();
+    tK.ref().field() = state_.forcingCoefficient(mesh_.time().deltaTValue());
+    return tK;
 }
 
 
@@ -69,8 +77,11 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
+    const clockTime timer;
+    state_.projectIfMeshChanged();
     const volScalarField::Internal KLambda(penaltyCoefficient());
     eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, eqn.psi());
+    state_.addForcingSeconds(timer.elapsedTime());
 }
 
 
@@ -81,6 +92,9 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
+    const clockTime timer;
+    state_.projectIfMeshChanged();
     const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
     eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
+    state_.addForcingSeconds(timer.elapsedTime());
 }
