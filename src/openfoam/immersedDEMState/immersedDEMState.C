@@ -97,12 +97,19 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     const label n = dem_->bodies().size();
     innerMomentum_.setSize(n, Zero);
     innerAngularMomentum_.setSize(n, Zero);
+    previousVelocity_.setSize(n, Zero);
+    for (label i = 0; i < n; ++i)
+    {
+        previousVelocity_[i] = v(dem_->bodies()[i].velocity);
+    }
 
     restarted_ = readRestart();
 
     const label nCells = project();
     Info<< "immersedDEM: projected on " << returnReduce(nCells, sumOp<label>())
-        << " cells" << nl << endl;
+        << " cells;";
+    reportProjectedVolumes();
+    Info<< endl;
 
     if (!restarted_)
     {
@@ -141,6 +148,9 @@ Foam::label Foam::immersedDEMState::project()
 
     label nCells = 0;
     const auto& bodies = dem_->bodies();
+    projectedVolume_.setSize(bodies.size());
+    projectedVolume_ = Zero;
+    const scalarField& V = mesh_.V();
     for (size_t bi = 0; bi < bodies.size(); ++bi)
     {
         if (dem_->isWall(int(bi))) continue;
@@ -169,11 +179,33 @@ Foam::label Foam::immersedDEMState::project()
             }
         }
     }
+    forAll(bodyOf_, celli)
+    {
+        if (bodyOf_[celli] >= 0)
+        {
+            projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+        }
+    }
+    Pstream::listCombineGather(projectedVolume_, plusEqOp<scalar>());
+    Pstream::listCombineScatter(projectedVolume_);
     lambda_.correctBoundaryConditions();
     Uib_.correctBoundaryConditions();
     projectedTimeIndex_ = mesh_.time().timeIndex();
     projectionSeconds_ += timer.elapsedTime();
     return nCells;
+}
+
+
+void Foam::immersedDEMState::reportProjectedVolumes() const
+{
+    Info<< " sum of lambda V / body volume:";
+    forAll(projectedVolume_, i)
+    {
+        if (dem_->isWall(i)) continue;
+        const rigidBody& b = dem_->bodies()[i];
+        Info<< ' ' << word(b.name) << ' ' << projectedVolume_[i]/b.geometry->volume();
+    }
+    Info<< endl;
 }
 
 
@@ -186,11 +218,9 @@ void Foam::immersedDEMState::projectIfMeshChanged()
     )
     {
         const label n = project();
-        if (debug)
-        {
-            Info<< "immersedDEM: mesh changed, projected again on "
-                << returnReduce(n, sumOp<label>()) << " cells" << endl;
-        }
+        Info<< "immersedDEM: mesh changed, projected again on "
+            << returnReduce(n, sumOp<label>()) << " cells;";
+        reportProjectedVolumes();
     }
 }
 
@@ -261,7 +291,8 @@ void Foam::immersedDEMState::fluidLoads
 (
     const volVectorField& U,
     scalar rho,
-    scalar deltaT
+    scalar deltaT,
+    scalar Ca
 )
 {
     const clockTime timer;
@@ -278,8 +309,13 @@ void Foam::immersedDEMState::fluidLoads
             rho*(P[i] + (M[i] - innerMomentum_[i])/deltaT) - rho*Vb*g;
         const vector T =
             rho*(PM[i] + (L[i] - innerAngularMomentum_[i])/deltaT);
-        b.fluidForce = c(F);
+        const scalar ma = Ca*rho*Vb;
+        const vector vn = v(b.velocity);
+        b.fluidForce = c(F + ma*(vn - previousVelocity_[i])/deltaT);
+        b.fluidDamping = ma/deltaT;
+        b.fluidReferenceVelocity = b.velocity;
         b.fluidTorque = c(T);
+        previousVelocity_[i] = vn;
         innerMomentum_[i] = M[i];
         innerAngularMomentum_[i] = L[i];
     }
@@ -325,6 +361,9 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             os.writeEntry("angularVelocity", v(b.angularVelocity));
             os.writeEntry("fluidForce", v(b.fluidForce));
             os.writeEntry("fluidTorque", v(b.fluidTorque));
+            os.writeEntry("fluidDamping", b.fluidDamping);
+            os.writeEntry("fluidReferenceVelocity", v(b.fluidReferenceVelocity));
+            os.writeEntry("previousVelocity", previousVelocity_[i]);
             os.writeEntry("innerMomentum", innerMomentum_[i]);
             os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
             os.endBlock();
@@ -419,6 +458,9 @@ bool Foam::immersedDEMState::readRestart()
         b.angularVelocity = c(d.get<vector>("angularVelocity"));
         b.fluidForce = c(d.get<vector>("fluidForce"));
         b.fluidTorque = c(d.get<vector>("fluidTorque"));
+        b.fluidDamping = d.get<scalar>("fluidDamping");
+        b.fluidReferenceVelocity = c(d.get<vector>("fluidReferenceVelocity"));
+        previousVelocity_[i] = d.get<vector>("previousVelocity");
         innerMomentum_[i] = d.get<vector>("innerMomentum");
         innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
     }

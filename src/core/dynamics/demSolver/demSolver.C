@@ -303,6 +303,11 @@ void demSolver::updateExternalLoads()
         if (b.dynamic())
         {
             b.externalForce += b.mass()*settings_.gravity;
+            if (b.fluidDamping > 0)
+            {
+                b.externalForce -=
+                    b.fluidDamping*(b.velocity - b.fluidReferenceVelocity);
+            }
         }
         b.externalTorque = b.fluidTorque;
     }

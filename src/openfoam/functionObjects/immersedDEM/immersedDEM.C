@@ -26,6 +26,7 @@ Foam::functionObjects::immersedDEM::immersedDEM
     fvMeshFunctionObject(name, runTime, dict),
     state_(immersedDEMState::New(mesh_)),
     rhoInf_(0),
+    Ca_(0.5),
     UName_("U")
 {
     read(dict);
@@ -62,10 +63,11 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U"
+            "rhoInf", "U", "addedMassCoefficient"
         }
     );
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
+    Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 0.5);
     UName_ = dict.getOrDefault<word>("U", "U");
     return true;
 }
@@ -85,7 +87,7 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
-        state_.fluidLoads(*U, rhoInf_, deltaT);
+        state_.fluidLoads(*U, rhoInf_, deltaT, Ca_);
     }
     else if (!warnedNoForcing_)
     {

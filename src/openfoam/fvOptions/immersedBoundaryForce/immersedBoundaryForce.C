@@ -77,8 +77,8 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
-    const clockTime timer;
     state_.projectIfMeshChanged();
+    const clockTime timer;
     const volScalarField::Internal KLambda(penaltyCoefficient());
     eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, eqn.psi());
     state_.addForcingSeconds(timer.elapsedTime());
@@ -92,8 +92,8 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
-    const clockTime timer;
     state_.projectIfMeshChanged();
+    const clockTime timer;
     const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
     eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
     state_.addForcingSeconds(timer.elapsedTime());

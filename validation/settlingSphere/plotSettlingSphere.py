@@ -1,0 +1,73 @@
+#!/usr/bin/python3
+"""Terminal velocities of the settling-sphere runs against ten Cate et al.
+(Phys. Fluids 14, 4012, 2002, Table 1), the plot of velocity against time,
+and the plugin's share of the run time (from the immersedDEM log lines).
+
+    plotSettlingSphere.py <work folder> E1 E2 ...
+
+Writes settlingSphere.png and results.txt next to this script; exits 1 when a
+terminal velocity is off by more than 3%."""
+import os, re, sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+# ten Cate et al. (2002), Table 1: measured terminal velocity [m/s]
+measured = {"E1": 0.038, "E2": 0.060, "E3": 0.091, "E4": 0.128}
+tolerance = 0.03
+
+here = os.path.dirname(os.path.abspath(__file__))
+work, fluids = sys.argv[1], sys.argv[2:]
+
+
+def trajectory(case):
+    t, w = [], []
+    for line in open(os.path.join(case, "postProcessing/sphere/0/bodies.dat")):
+        if line.startswith("#"):
+            continue
+        r = line.split()
+        t.append(float(r[0])); w.append(-float(r[11]))
+    return t, w
+
+
+def pluginShare(log):
+    """Seconds in projection + DEM + forcing over the solver's wall time"""
+    plugin, total = 0.0, 0.0
+    for line in open(log):
+        m = re.search(r"seconds: projection (\S+) DEM (\S+) forcing (\S+)", line)
+        if m:
+            plugin += sum(float(x) for x in m.groups())
+        m = re.match(r"ExecutionTime = (\S+) s", line)
+        if m:
+            total = float(m.group(1))
+    return plugin, total
+
+
+rows, ok = [], True
+fig, ax = plt.subplots(figsize=(7, 4.5))
+for f in fluids:
+    case = os.path.join(work, f)
+    t, w = trajectory(case)
+    u = max(w)
+    err = u / measured[f] - 1
+    plugin, total = pluginShare(os.path.join(case, "log.pimpleFoam"))
+    ok &= abs(err) <= tolerance
+    rows.append("%s  %.4f  %.3f  %+6.2f%%  %7.1f  %6.1f  %5.1f%%"
+                % (f, u, measured[f], 100 * err, total, plugin, 100 * plugin / max(total, 1e-30)))
+    line, = ax.plot(t, w, label="%s simulated" % f)
+    ax.axhline(measured[f], color=line.get_color(), ls="--", lw=0.8)
+ax.set_xlabel("t [s]")
+ax.set_ylabel("settling velocity [m/s]")
+ax.set_title("Settling sphere (ten Cate et al. 2002); dashed: measured terminal velocity")
+ax.legend(loc="lower right")
+ax.grid(alpha=0.3)
+fig.tight_layout()
+fig.savefig(os.path.join(here, "settlingSphere.png"), dpi=120)
+
+header = ("fluid  u_sim [m/s]  u_measured  error  run [s]  plugin [s]  share\n")
+text = header + "\n".join(rows) + "\n"
+open(os.path.join(here, "results.txt"), "w").write(text)
+print(text)
+print("All within 3%" if ok else "FAILED: a terminal velocity is off by more than 3%")
+sys.exit(0 if ok else 1)

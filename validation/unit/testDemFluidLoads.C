@@ -1,0 +1,62 @@
+// The DEM's side of the fluid coupling: a fluid force set between two
+// advances acts from the first sub-step of the next one, and the added-mass
+// stabilisation relaxes a velocity change within a CFD step like a drag
+// m_a/dt (v - v_ref), exponentially, towards the reference velocity.
+
+#include "demSolver.H"
+#include "sphereShape.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace immersedDEM;
+
+namespace
+{
+
+demSolver oneSphere(double deltaT)
+{
+    contactMaterial m{"m", 1e7, 0.3, 0.5, 0.3};
+    demSettings s;
+    s.deltaT = deltaT;
+    demSolver dem({m}, s);
+    dem.addBody(rigidBody("ball", std::make_shared<sphereShape>(0.005), 1000));
+    return dem;
+}
+
+} // End anonymous namespace
+
+
+TEST(demFluidLoads, newFluidForceActsFromTheNextAdvance)
+{
+    demSolver dem = oneSphere(1e-4);
+    dem.advance(1e-2);                      // forces computed, no fluid force
+    rigidBody& b = dem.bodies()[0];
+    const double m = b.mass();
+    b.fluidForce = vec3(0, 0, 2e-3);
+    b.fluidTorque = vec3(1e-7, 0, 0);
+    dem.advance(1e-2);
+    // Constant force over the whole interval: v = F T/m exactly
+    EXPECT_NEAR(b.velocity.z(), 2e-3*1e-2/m, 1e-12);
+    EXPECT_NEAR(b.pose.position().z(), 0.5*2e-3/m*1e-4, 1e-12);
+    EXPECT_GT(b.angularVelocity.x(), 0);
+}
+
+
+TEST(demFluidLoads, addedMassDampingRelaxesTowardsTheReference)
+{
+    const double dt = 1e-6;
+    demSolver dem = oneSphere(dt);
+    rigidBody& b = dem.bodies()[0];
+    const double m = b.mass();
+    const double c = 0.5*m/1e-3;            // m_a = m/2 over a CFD step of 1 ms
+    b.velocity = vec3(0.2, 0, 0);
+    b.fluidReferenceVelocity = vec3(0.1, 0, 0);
+    b.fluidDamping = c;
+    const double T = 2e-3;
+    dem.advance(T);
+    const double expected = 0.1 + 0.1*std::exp(-c*T/m);
+    EXPECT_NEAR(b.velocity.x(), expected, 1e-4*expected);
+    EXPECT_NEAR(b.appliedFluidForce().x(), -c*(b.velocity.x() - 0.1), 1e-12);
+}
