@@ -311,9 +311,11 @@ void Foam::immersedDEMState::fluidLoads
             rho*(PM[i] + (L[i] - innerAngularMomentum_[i])/deltaT);
         const scalar ma = Ca*rho*Vb;
         const vector vn = v(b.velocity);
-        b.fluidForce = c(F + ma*(vn - previousVelocity_[i])/deltaT);
+        b.fluidForce = c(F);
         b.fluidDamping = ma/deltaT;
         b.fluidReferenceVelocity = b.velocity;
+        b.fluidReferenceAcceleration = c((vn - previousVelocity_[i])/deltaT);
+        b.fluidReferenceTime = dem_->time();
         b.fluidTorque = c(T);
         previousVelocity_[i] = vn;
         innerMomentum_[i] = M[i];
@@ -363,6 +365,8 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             os.writeEntry("fluidTorque", v(b.fluidTorque));
             os.writeEntry("fluidDamping", b.fluidDamping);
             os.writeEntry("fluidReferenceVelocity", v(b.fluidReferenceVelocity));
+            os.writeEntry("fluidReferenceAcceleration", v(b.fluidReferenceAcceleration));
+            os.writeEntry("fluidReferenceTime", b.fluidReferenceTime);
             os.writeEntry("previousVelocity", previousVelocity_[i]);
             os.writeEntry("innerMomentum", innerMomentum_[i]);
             os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
@@ -460,6 +464,8 @@ bool Foam::immersedDEMState::readRestart()
         b.fluidTorque = c(d.get<vector>("fluidTorque"));
         b.fluidDamping = d.get<scalar>("fluidDamping");
         b.fluidReferenceVelocity = c(d.get<vector>("fluidReferenceVelocity"));
+        b.fluidReferenceAcceleration = c(d.get<vector>("fluidReferenceAcceleration"));
+        b.fluidReferenceTime = d.get<scalar>("fluidReferenceTime");
         previousVelocity_[i] = d.get<vector>("previousVelocity");
         innerMomentum_[i] = d.get<vector>("innerMomentum");
         innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");

@@ -108,7 +108,7 @@ void demOutput::writeBodies(double time, const demSolver& dem)
         v3(b.angularVelocity);
         v3(F);
         v3(b.contactForce);
-        v3(b.appliedFluidForce());
+        v3(b.appliedFluidForce(dem.time()));
         v3(T);
         bodies_ << '\n';
     }

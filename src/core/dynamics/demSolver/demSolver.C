@@ -280,7 +280,7 @@ void demSolver::computeContacts()
     {
         b.clearContactForces();
     }
-    updateExternalLoads();
+    updateExternalLoads(loadTime_);
     contacts_.clear();
     std::map<std::pair<int, int>, std::vector<contactHistory>> next;
     for (const auto& p : candidatePairs())
@@ -294,7 +294,7 @@ void demSolver::computeContacts()
 }
 
 
-void demSolver::updateExternalLoads()
+void demSolver::updateExternalLoads(double t)
 {
     for (rigidBody& b : bodies_)
     {
@@ -302,12 +302,7 @@ void demSolver::updateExternalLoads()
         b.externalForce = b.fluidForce;
         if (b.dynamic())
         {
-            b.externalForce += b.mass()*settings_.gravity;
-            if (b.fluidDamping > 0)
-            {
-                b.externalForce -=
-                    b.fluidDamping*(b.velocity - b.fluidReferenceVelocity);
-            }
+            b.externalForce = b.appliedFluidForce(t) + b.mass()*settings_.gravity;
         }
         b.externalTorque = b.fluidTorque;
     }
@@ -374,17 +369,22 @@ void demSolver::step(double dt)
     if (!forcesCurrent_)
     {
         lastDt_ = 0;
+        loadTime_ = time_;
         computeContacts();
     }
     // The fluid loads may have changed since the contacts were computed
-    updateExternalLoads();
+    updateExternalLoads(time_);
     lastDt_ = dt;
     for (rigidBody& b : bodies_)
     {
         rigidBodyIntegrator::kick(b, 0.5*dt);
         rigidBodyIntegrator::drift(b, dt);
     }
+    // Velocity-dependent loads see the half-step velocity: evaluate them
+    // at the half step
+    loadTime_ = time_ + 0.5*dt;
     computeContacts();
+    loadTime_ = time_ + dt;
     for (rigidBody& b : bodies_)
     {
         rigidBodyIntegrator::kick(b, 0.5*dt);
