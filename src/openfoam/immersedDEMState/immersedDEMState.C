@@ -98,9 +98,11 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     innerMomentum_.setSize(n, Zero);
     innerAngularMomentum_.setSize(n, Zero);
     previousVelocity_.setSize(n, Zero);
+    previousAngularVelocity_.setSize(n, Zero);
     for (label i = 0; i < n; ++i)
     {
         previousVelocity_[i] = v(dem_->bodies()[i].velocity);
+        previousAngularVelocity_[i] = v(dem_->bodies()[i].angularVelocity);
     }
 
     restarted_ = readRestart();
@@ -317,7 +319,14 @@ void Foam::immersedDEMState::fluidLoads
         b.fluidReferenceAcceleration = c((vn - previousVelocity_[i])/deltaT);
         b.fluidReferenceTime = dem_->time();
         b.fluidTorque = c(T);
+        const vector wn = v(b.angularVelocity);
+        b.fluidAngularDamping =
+            Ca*rho/b.density*b.inertia().sum()/3/deltaT;
+        b.fluidReferenceAngularVelocity = b.angularVelocity;
+        b.fluidReferenceAngularAcceleration =
+            c((wn - previousAngularVelocity_[i])/deltaT);
         previousVelocity_[i] = vn;
+        previousAngularVelocity_[i] = wn;
         innerMomentum_[i] = M[i];
         innerAngularMomentum_[i] = L[i];
     }
@@ -368,6 +377,10 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             os.writeEntry("fluidReferenceAcceleration", v(b.fluidReferenceAcceleration));
             os.writeEntry("fluidReferenceTime", b.fluidReferenceTime);
             os.writeEntry("previousVelocity", previousVelocity_[i]);
+            os.writeEntry("fluidAngularDamping", b.fluidAngularDamping);
+            os.writeEntry("fluidReferenceAngularVelocity", v(b.fluidReferenceAngularVelocity));
+            os.writeEntry("fluidReferenceAngularAcceleration", v(b.fluidReferenceAngularAcceleration));
+            os.writeEntry("previousAngularVelocity", previousAngularVelocity_[i]);
             os.writeEntry("innerMomentum", innerMomentum_[i]);
             os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
             os.endBlock();
@@ -467,6 +480,10 @@ bool Foam::immersedDEMState::readRestart()
         b.fluidReferenceAcceleration = c(d.get<vector>("fluidReferenceAcceleration"));
         b.fluidReferenceTime = d.get<scalar>("fluidReferenceTime");
         previousVelocity_[i] = d.get<vector>("previousVelocity");
+        b.fluidAngularDamping = d.get<scalar>("fluidAngularDamping");
+        b.fluidReferenceAngularVelocity = c(d.get<vector>("fluidReferenceAngularVelocity"));
+        b.fluidReferenceAngularAcceleration = c(d.get<vector>("fluidReferenceAngularAcceleration"));
+        previousAngularVelocity_[i] = d.get<vector>("previousAngularVelocity");
         innerMomentum_[i] = d.get<vector>("innerMomentum");
         innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
     }

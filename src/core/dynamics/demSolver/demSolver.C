@@ -304,7 +304,7 @@ void demSolver::updateExternalLoads(double t)
         {
             b.externalForce = b.appliedFluidForce(t) + b.mass()*settings_.gravity;
         }
-        b.externalTorque = b.fluidTorque;
+        b.externalTorque = b.dynamic() ? b.appliedFluidTorque(t) : b.fluidTorque;
     }
 }
 

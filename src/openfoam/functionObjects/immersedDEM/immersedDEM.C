@@ -26,7 +26,7 @@ Foam::functionObjects::immersedDEM::immersedDEM
     fvMeshFunctionObject(name, runTime, dict),
     state_(immersedDEMState::New(mesh_)),
     rhoInf_(0),
-    Ca_(0.5),
+    Ca_(1),
     UName_("U")
 {
     read(dict);
@@ -67,7 +67,7 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         }
     );
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
-    Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 0.5);
+    Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     UName_ = dict.getOrDefault<word>("U", "U");
     return true;
 }
