@@ -81,3 +81,21 @@ TEST(demFluidLoads, addedMassDampingLeavesTheReferenceMotionAlone)
     EXPECT_NEAR(b.velocity.z(), 0.05 + F.z()/m*1e-3, 1e-12);
     EXPECT_NEAR((b.appliedFluidForce(dem.time()) - F).norm(), 0, 1e-12);
 }
+
+
+TEST(demFluidLoads, angularDampingRelaxesTheSpinTowardsTheReference)
+{
+    const double dt = 1e-6;
+    demSolver dem = oneSphere(dt);
+    rigidBody& b = dem.bodies()[0];
+    const double I = b.inertia().x();       // a sphere: isotropic
+    const double D = 0.8*I/1e-3;
+    b.angularVelocity = vec3(0, 3, 0);
+    b.fluidReferenceAngularVelocity = vec3(0, 1, 0);
+    b.fluidAngularDamping = D;
+    const double T = 2e-3;
+    dem.advance(T);
+    const double expected = 1 + 2*std::exp(-D*T/I);
+    EXPECT_NEAR(b.angularVelocity.y(), expected, 1e-4*expected);
+    EXPECT_NEAR(b.angularVelocity.x(), 0, 1e-14);
+}
