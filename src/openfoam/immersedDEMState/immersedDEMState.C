@@ -112,6 +112,18 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         << " cells;";
     reportProjectedVolumes();
     Info<< endl;
+    forAll(projectedVolume_, i)
+    {
+        const rigidBody& b = dem_->bodies()[i];
+        if (!dem_->isWall(i) && projectedVolume_[i] < 0.5*b.geometry->volume())
+        {
+            WarningInFunction
+                << "Body '" << b.name << "' of " << properties_.objectPath()
+                << " lies mostly outside the mesh (projected "
+                << projectedVolume_[i]/b.geometry->volume()
+                << " of its volume): the fluid does not see it there" << endl;
+        }
+    }
 
     if (!restarted_)
     {

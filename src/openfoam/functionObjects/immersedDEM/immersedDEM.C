@@ -63,9 +63,10 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "addedMassCoefficient"
+            "rhoInf", "U", "addedMassCoefficient", "maxSubSteps"
         }
     );
+    maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     UName_ = dict.getOrDefault<word>("U", "U");
@@ -96,6 +97,23 @@ bool Foam::functionObjects::immersedDEM::execute()
             << " fvOption in constant/fvOptions: the bodies do not feel the"
             << " fluid and the fluid does not see them" << endl;
         warnedNoForcing_ = true;
+    }
+
+    // A DEM step far below the CFD step is a stiff material or a tiny
+    // body; past this many sub-steps per CFD step the run would only look
+    // hung
+    const scalar demDeltaT = state_.dem().timeStep();
+    if (deltaT/demDeltaT > maxSubSteps_)
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << ", time " << time_.timeName()
+            << ": the DEM step " << demDeltaT << " s would take "
+            << ceil(deltaT/demDeltaT) << " sub-steps for the CFD step "
+            << deltaT << " s, more than maxSubSteps " << maxSubSteps_
+            << " (system/controlDict). Reduce the CFD step, soften the"
+            << " materials, set time { deltaT ...; } in "
+            << state_.properties().objectPath() << " or raise maxSubSteps"
+            << exit(FatalError);
     }
 
     label nSteps = 0;
