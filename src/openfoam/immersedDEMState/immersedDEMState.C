@@ -73,6 +73,12 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         IOobject("Uib", mesh.time().timeName(), mesh, IOobject::NO_READ, IOobject::AUTO_WRITE),
         mesh,
         dimensionedVector(dimVelocity, Zero)
+    ),
+    contactZone_
+    (
+        IOobject("contactZone", mesh.time().timeName(), mesh, IOobject::NO_READ, IOobject::NO_WRITE),
+        mesh,
+        dimensionedScalar(dimless, Zero)
     )
 {
     // Gravity from constant/g when the case has one
@@ -125,19 +131,24 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         }
     }
 
-    if (!restarted_)
+    innerMomentumSet_ = restarted_;
+}
+
+
+void Foam::immersedDEMState::setInnerMomentum(const volVectorField& U)
+{
+    if (innerMomentumSet_)
     {
-        // The fluid inside a body starts with the body: its momentum is
-        // the rigid one, so the first step sees no spurious inner term
-        for (label i = 0; i < n; ++i)
-        {
-            const rigidBody& b = dem_->bodies()[i];
-            if (dem_->isWall(i)) continue;
-            innerMomentum_[i] = v(b.mass()/b.density*b.velocity);
-            innerAngularMomentum_[i] =
-                v(b.worldInertia()*b.angularVelocity/b.density);
-        }
+        return;
     }
+    // The fluid inside the bodies as it is before the first step: if it
+    // is at rest while a body starts moving, the first step's forcing sets
+    // it in motion, and the inner term must cancel that part of the
+    // forcing's reaction (it is the body's own volume, not the fluid
+    // around it, being accelerated)
+    List<vector> P, PM;
+    fluidSums(U, scalarField(U.size(), Zero), P, PM, innerMomentum_, innerAngularMomentum_);
+    innerMomentumSet_ = true;
 }
 
 
@@ -200,6 +211,31 @@ Foam::label Foam::immersedDEMState::project()
             projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
         }
     }
+
+    scalarField& zone = contactZone_.primitiveFieldRef();
+    zone = 0;
+    for (size_t i = 0; i < bodies.size(); ++i)
+    {
+        if (dem_->isWall(int(i))) continue;
+        for (size_t j = i + 1; j < bodies.size(); ++j)
+        {
+            if (dem_->isWall(int(j))) continue;
+            const scalar margin = 0.5*min
+            (
+                bodies[i].equivalentRadius(), bodies[j].equivalentRadius()
+            );
+            const axisAlignedBox bi = bodies[i].geometry->worldBox(bodies[i].pose);
+            const axisAlignedBox bj = bodies[j].geometry->worldBox(bodies[j].pose);
+            const vec3 lo = bi.min.cwiseMax(bj.min) - vec3::Constant(margin);
+            const vec3 hi = bi.max.cwiseMin(bj.max) + vec3::Constant(margin);
+            if ((lo.array() > hi.array()).any()) continue;
+            for (const label k : tree.findBox(treeBoundBox(v(lo), v(hi))))
+            {
+                zone[tree.shapes().cellLabels()[k]] = 1;
+            }
+        }
+    }
+    contactZone_.correctBoundaryConditions();
     Pstream::listCombineGather(projectedVolume_, plusEqOp<scalar>());
     Pstream::listCombineScatter(projectedVolume_);
     lambda_.correctBoundaryConditions();
@@ -310,6 +346,7 @@ void Foam::immersedDEMState::fluidLoads
 )
 {
     const clockTime timer;
+    setInnerMomentum(U);
     List<vector> P, PM, M, L;
     fluidSums(U, forcingCoefficient(deltaT)(), P, PM, M, L);
     const vector g = v(dem_->settings().gravity);

@@ -394,7 +394,7 @@ void demSolver::step(double dt)
 }
 
 
-int demSolver::advance(double T)
+int demSolver::advance(double T, const std::function<void()>& afterStep)
 {
     if (!(T > 0))
     {
@@ -406,6 +406,7 @@ int demSolver::advance(double T)
     for (int i = 0; i < n; ++i)
     {
         step(dt);
+        if (afterStep) afterStep();
     }
     return n;
 }

@@ -63,9 +63,11 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "addedMassCoefficient", "maxSubSteps"
+            "rhoInf", "U", "addedMassCoefficient", "maxSubSteps", "writeContacts"
         }
     );
+    contactsEverySubStep_ =
+        immersedDEMChecks::oneOfOrDefault(dict, "writeContacts", {"step", "subStep"}, "step") == "subStep";
     maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
@@ -120,7 +122,22 @@ bool Foam::functionObjects::immersedDEM::execute()
     const clockTime demTimer;
     try
     {
-        nSteps = state_.dem().advance(deltaT);
+        if (output_ && contactsEverySubStep_)
+        {
+            // The DEM's time, not the CFD's: rows inside the CFD step
+            nSteps = state_.dem().advance
+            (
+                deltaT,
+                [this]()
+                {
+                    output_->writeContacts(state_.dem().time(), state_.dem());
+                }
+            );
+        }
+        else
+        {
+            nSteps = state_.dem().advance(deltaT);
+        }
     }
     catch (const ::immersedDEM::coreError& err)
     {
@@ -151,7 +168,10 @@ bool Foam::functionObjects::immersedDEM::execute()
     if (output_)
     {
         output_->writeBodies(time_.value(), state_.dem());
-        output_->writeContacts(time_.value(), state_.dem());
+        if (!contactsEverySubStep_)
+        {
+            output_->writeContacts(time_.value(), state_.dem());
+        }
     }
     return true;
 }

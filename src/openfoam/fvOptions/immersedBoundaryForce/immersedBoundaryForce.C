@@ -78,6 +78,7 @@ void Foam::fv::immersedBoundaryForce::addSup
 )
 {
     state_.projectIfMeshChanged();
+    state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
     const volScalarField::Internal KLambda(penaltyCoefficient());
     eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, eqn.psi());
@@ -93,6 +94,7 @@ void Foam::fv::immersedBoundaryForce::addSup
 )
 {
     state_.projectIfMeshChanged();
+    state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
     const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
     eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
