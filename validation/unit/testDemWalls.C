@@ -6,6 +6,9 @@
 #include "halfSpaceShape.H"
 #include "wallMeshShape.H"
 #include "coreError.H"
+#include "primitiveMeshes.H"
+#include "overlapEngine.H"
+#include "sphereOverlap.H"
 
 #include <gtest/gtest.h>
 
@@ -92,4 +95,41 @@ TEST(demWalls, wallsMustNotMoveByForces)
     demSolver dem = makeDem("sphere");
     rigidBody w("w", std::make_shared<halfSpaceShape>(), 1);
     EXPECT_THROW(dem.addBody(w, true), coreError);     // free wall
+}
+
+
+// A sphere against a flat part of a mesh wall (the floor of a closed box
+// surface, normals inward) gets the exact cap, the same as against a plane;
+// near the box's edge (two faces not coplanar) and on an open surface's rim
+// the wall is not flat: the octree measures it
+TEST(demWalls, flatPartOfAMeshWallGivesTheExactCap)
+{
+    triangleSoup box = primitiveMeshes::box(vec3(0.05, 0.05, 0.05));
+    for (triFace& f : box.faces) std::swap(f[1], f[2]);     // normals inward
+    const wallMeshShape wall(box, "box", 0.02);
+    const sphereShape ball(R);
+    // The box spans -0.05..0.05; a ball sinking 0.1 mm into its floor
+    const bodyPose pw;
+    const bodyPose pb(vec3(0.003, -0.002, -0.05 + R - 1e-4), quat::Identity());
+    vec3 x, n;
+    ASSERT_TRUE(wall.flatNear(pb.position(), R, x, n));
+    EXPECT_NEAR(n.z(), 1, 1e-12);
+    const auto engine = overlapEngine::New("virtualMesh");
+    const contactGeometry g = engine->evaluate(wall, pw, ball, pb, {2*R/20, 4});
+    const contactGeometry exact = sphereOverlap::cap(vec3(0, 0, -0.05), vec3::UnitZ(), pb.position(), R);
+    ASSERT_EQ(g.regions.size(), 1u);
+    EXPECT_NEAR(g.regions[0].volume, exact.regions[0].volume, 1e-12*exact.regions[0].volume);
+    EXPECT_NEAR(g.regions[0].normal.z(), 1, 1e-12);
+    // Swapped: the normal turns
+    const contactGeometry s = engine->evaluate(ball, pb, wall, pw, {2*R/20, 4});
+    EXPECT_NEAR(s.regions[0].normal.z(), -1, 1e-12);
+
+    // Near the floor's edge the side wall is within reach: not flat
+    EXPECT_FALSE(wall.flatNear(vec3(0.05 - 0.5*R, 0, -0.05 + R - 1e-4), R, x, n));
+    // An open two-triangle plate: its rim is within reach of any ball on it
+    triangleSoup plate;
+    plate.points = {vec3(-0.1, -0.1, 0), vec3(0.1, -0.1, 0), vec3(0.1, 0.1, 0), vec3(-0.1, 0.1, 0)};
+    plate.faces = {{0, 1, 2}, {0, 2, 3}};
+    const wallMeshShape open(plate, "plate", 0.02);
+    EXPECT_FALSE(open.flatNear(vec3(0, 0, R - 1e-4), R, x, n));
 }

@@ -194,4 +194,47 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
     return best;
 }
 
+bool triangleBVH::facesWithin
+(
+    const vec3& p,
+    double r,
+    std::vector<int>& faces,
+    size_t maxFaces
+) const
+{
+    if (nodes_.empty())
+    {
+        return true;
+    }
+    const double r2 = r*r;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top)
+    {
+        const node& nd = nodes_[stack[--top]];
+        if (boxDistSqr(p, nd.lo, nd.hi) > r2)
+        {
+            continue;
+        }
+        if (nd.count)
+        {
+            for (int s = nd.first; s < nd.first + nd.count; ++s)
+            {
+                int feature;
+                const auto& t = corners_[s];
+                if ((closestOnTriangle(p, t[0], t[1], t[2], feature) - p).squaredNorm() <= r2)
+                {
+                    faces.push_back(faceOfSlot_[s]);
+                    if (faces.size() > maxFaces) return false;
+                }
+            }
+            continue;
+        }
+        stack[top++] = nd.first;
+        stack[top++] = nd.right;
+    }
+    return true;
+}
+
 } // End namespace immersedDEM

@@ -1,4 +1,6 @@
 #include "wallMeshShape.H"
+
+#include <map>
 #include "coreError.H"
 
 #include <limits>
@@ -45,6 +47,54 @@ wallMeshShape::wallMeshShape
         radius_ = std::max(radius_, p.norm());
     }
     radius_ += thickness;
+
+    std::map<std::pair<int, int>, int> edgeUses;
+    for (const triFace& f : surface_.faces)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = f[k], b = f[(k + 1)%3];
+            ++edgeUses[{std::min(a, b), std::max(a, b)}];
+        }
+    }
+    onRim_.assign(surface_.faces.size(), 0);
+    for (size_t fi = 0; fi < surface_.faces.size(); ++fi)
+    {
+        const triFace& f = surface_.faces[fi];
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = f[k], b = f[(k + 1)%3];
+            if (edgeUses[{std::min(a, b), std::max(a, b)}] == 1) onRim_[fi] = 1;
+        }
+    }
+}
+
+
+bool wallMeshShape::flatNear(const vec3& p, double r, vec3& point, vec3& normal) const
+{
+    std::vector<int> faces;
+    if (!distance_.tree().facesWithin(p, r, faces, 4096) || faces.empty())
+    {
+        return false;
+    }
+    const vec3& n0 = distance_.faceNormal(faces[0]);
+    const vec3& x0 = surface_.points[surface_.faces[faces[0]][0]];
+    // Flat to round-off of the wall's size
+    const double tol = 1e-12*(box_.max - box_.min).norm();
+    for (const int f : faces)
+    {
+        if (onRim_[f] || distance_.faceNormal(f).dot(n0) < 1 - 1e-12)
+        {
+            return false;
+        }
+        for (const int v : surface_.faces[f])
+        {
+            if (std::abs((surface_.points[v] - x0).dot(n0)) > tol) return false;
+        }
+    }
+    point = x0;
+    normal = n0;
+    return true;
 }
 
 

@@ -1,5 +1,8 @@
 #include "virtualMeshOverlap.H"
 #include "overlapTools.H"
+#include "sphereOverlap.H"
+#include "sphereShape.H"
+#include "wallMeshShape.H"
 
 #include <algorithm>
 #include <cmath>
@@ -295,6 +298,34 @@ contactGeometry virtualMeshOverlap::evaluate
     if (box.empty())
     {
         return g;
+    }
+
+    // A sphere against a wall that is flat wherever the sphere reaches:
+    // the exact spherical cap (what the octree would approximate; a
+    // sphere resting on a mesh patch would otherwise cost a full
+    // refinement of its cap every DEM step)
+    {
+        const auto* sa = dynamic_cast<const sphereShape*>(&A);
+        const auto* sb = dynamic_cast<const sphereShape*>(&B);
+        const auto* wa = dynamic_cast<const wallMeshShape*>(&A);
+        const auto* wb = dynamic_cast<const wallMeshShape*>(&B);
+        vec3 x, n;
+        if (wa && sb && wa->flatNear(pA.toBody(pB.position()), sb->radius(), x, n))
+        {
+            return sphereOverlap::cap
+            (
+                pA.toWorld(x), pA.vectorToWorld(n), pB.position(), sb->radius()
+            );
+        }
+        if (sa && wb && wb->flatNear(pB.toBody(pA.position()), sa->radius(), x, n))
+        {
+            g = sphereOverlap::cap
+            (
+                pB.toWorld(x), pB.vectorToWorld(n), pA.position(), sa->radius()
+            );
+            for (contactRegion& r : g.regions) r.normal = -r.normal;
+            return g;
+        }
     }
 
     // Roots: cells of size H = 2^m h on the same lattice, m chosen so a few
