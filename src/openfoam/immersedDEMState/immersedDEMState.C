@@ -147,7 +147,7 @@ void Foam::immersedDEMState::setInnerMomentum(const volVectorField& U)
     // forcing's reaction (it is the body's own volume, not the fluid
     // around it, being accelerated)
     List<vector> P, PM;
-    fluidSums(U, scalarField(U.size(), Zero), P, PM, innerMomentum_, innerAngularMomentum_);
+    fluidSums(U, 0, P, PM, innerMomentum_, innerAngularMomentum_);
     innerMomentumSet_ = true;
 }
 
@@ -161,10 +161,29 @@ Foam::label Foam::immersedDEMState::project()
 
     scalarField& lambda = lambda_.primitiveFieldRef();
     vectorField& Uib = Uib_.primitiveFieldRef();
-    lambda = 0;
-    Uib = Zero;
-    bodyOf_.setSize(mesh_.nCells());
-    bodyOf_ = -1;
+    scalarField& zone = contactZone_.primitiveFieldRef();
+    if (bodyOf_.size() != mesh_.nCells())
+    {
+        // New mesh (start, topology change): everything
+        lambda = 0;
+        Uib = Zero;
+        zone = 0;
+        bodyOf_.setSize(mesh_.nCells());
+        bodyOf_ = -1;
+    }
+    else
+    {
+        // Only the cells the last projection set: the cost follows the
+        // bodies, not the mesh
+        for (const label celli : touched_)
+        {
+            lambda[celli] = 0;
+            Uib[celli] = Zero;
+            zone[celli] = 0;
+            bodyOf_[celli] = -1;
+        }
+    }
+    touched_.clear();
 
     const indexedOctree<treeDataCell>& tree = mesh_.cellTree();
     const pointField& points = mesh_.points();
@@ -198,22 +217,18 @@ Foam::label Foam::immersedDEMState::project()
             if (f > lambda[celli])
             {
                 if (lambda[celli] == 0) ++nCells;
+                if (bodyOf_[celli] < 0) touched_.append(celli);
                 lambda[celli] = f;
                 bodyOf_[celli] = label(bi);
                 Uib[celli] = v(b.pointVelocity(c(C[celli])));
             }
         }
     }
-    forAll(bodyOf_, celli)
+    for (const label celli : touched_)
     {
-        if (bodyOf_[celli] >= 0)
-        {
-            projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
-        }
+        projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
     }
 
-    scalarField& zone = contactZone_.primitiveFieldRef();
-    zone = 0;
     for (size_t i = 0; i < bodies.size(); ++i)
     {
         if (dem_->isWall(int(i))) continue;
@@ -231,7 +246,12 @@ Foam::label Foam::immersedDEMState::project()
             if ((lo.array() > hi.array()).any()) continue;
             for (const label k : tree.findBox(treeBoundBox(v(lo), v(hi))))
             {
-                zone[tree.shapes().cellLabels()[k]] = 1;
+                const label celli = tree.shapes().cellLabels()[k];
+                if (bodyOf_[celli] < 0 && zone[celli] == 0)
+                {
+                    touched_.append(celli);
+                }
+                zone[celli] = 1;
             }
         }
     }
@@ -267,11 +287,22 @@ void Foam::immersedDEMState::projectIfMeshChanged()
      || (mesh_.topoChanging() && projectedTimeIndex_ != mesh_.time().timeIndex())
     )
     {
+        // The cell numbering changed: reset every cell, not the ones the
+        // last projection set
+        bodyOf_.clear();
         const label n = project();
         Info<< "immersedDEM: mesh changed, projected again on "
             << returnReduce(n, sumOp<label>()) << " cells;";
         reportProjectedVolumes();
     }
+}
+
+
+Foam::scalar Foam::immersedDEMState::coefficient(scalar l, scalar deltaT) const
+{
+    if (!(l > 0) || !(deltaT > 0)) return 0;
+    const scalar aMax = penalty_ > 0 ? penalty_ : 1e3;
+    return (l*(1 + aMax) >= aMax ? aMax : l/(1 - l))/deltaT;
 }
 
 
@@ -281,14 +312,9 @@ Foam::immersedDEMState::forcingCoefficient(scalar deltaT) const
     const scalarField& lambda = lambda_.primitiveField();
     tmp<scalarField> tK(new scalarField(lambda.size(), Zero));
     scalarField& K = tK.ref();
-    const scalar aMax = penalty_ > 0 ? penalty_ : 1e3;
-    forAll(lambda, celli)
+    for (const label celli : touched_)
     {
-        const scalar l = lambda[celli];
-        if (l > 0)
-        {
-            K[celli] = (l*(1 + aMax) >= aMax ? aMax : l/(1 - l))/deltaT;
-        }
+        K[celli] = coefficient(lambda[celli], deltaT);
     }
     return tK;
 }
@@ -297,7 +323,7 @@ Foam::immersedDEMState::forcingCoefficient(scalar deltaT) const
 void Foam::immersedDEMState::fluidSums
 (
     const volVectorField& U,
-    const scalarField& K,
+    const scalar deltaT,
     List<vector>& penalty,
     List<vector>& penaltyMoment,
     List<vector>& momentum,
@@ -314,13 +340,14 @@ void Foam::immersedDEMState::fluidSums
     const vectorField& C = mesh_.cellCentres();
     const scalarField& lambda = lambda_.primitiveField();
     const vectorField& Uib = Uib_.primitiveField();
-    forAll(bodyOf_, celli)
+    for (const label celli : touched_)
     {
         const label i = bodyOf_[celli];
         if (i < 0) continue;
         const scalar w = lambda[celli]*V[celli];
         const vector r = C[celli] - v(dem_->bodies()[i].pose.position());
-        const vector d = K[celli]*V[celli]*(U[celli] - Uib[celli]);
+        const vector d =
+            coefficient(lambda[celli], deltaT)*V[celli]*(U[celli] - Uib[celli]);
         const vector m = w*U[celli];
         penalty[i] += d;
         penaltyMoment[i] += r ^ d;
@@ -348,7 +375,7 @@ void Foam::immersedDEMState::fluidLoads
     const clockTime timer;
     setInnerMomentum(U);
     List<vector> P, PM, M, L;
-    fluidSums(U, forcingCoefficient(deltaT)(), P, PM, M, L);
+    fluidSums(U, deltaT, P, PM, M, L);
     const vector g = v(dem_->settings().gravity);
     auto& bodies = dem_->bodies();
     forAll(M, i)
