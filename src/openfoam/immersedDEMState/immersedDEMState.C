@@ -229,7 +229,9 @@ Foam::label Foam::immersedDEMState::project()
         projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
     }
 
-    for (size_t i = 0; i < bodies.size(); ++i)
+    // The contact zone is a refinement field: only a dynamic mesh reads it,
+    // and the pairs loop is quadratic in the bodies
+    for (size_t i = 0; mesh_.dynamic() && i < bodies.size(); ++i)
     {
         if (dem_->isWall(int(i))) continue;
         for (size_t j = i + 1; j < bodies.size(); ++j)

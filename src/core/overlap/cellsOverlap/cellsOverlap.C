@@ -65,18 +65,13 @@ contactGeometry cellsOverlap::evaluate
     }
 
     // The shared cells: lambda_A > 0 and lambda_B > 0
-    const double r = 0.5*std::sqrt(3.0)*h;
     std::map<cellIndex, sharedCell> shared;
     long queries = 0, leaves = 0;
-    overlapTools::forEachLatticeCell
+    overlapTools::forEachScreenedCell
     (
-        overlapTools::latticeRange(box, h), h,
-        [&](const cellIndex& ci, const vec3& corner)
+        A, pA, B, pB, box, h, queries, leaves,
+        [&](const cellIndex& ci, const vec3& corner, double dA, double dB, double r)
         {
-            ++leaves;
-            const vec3 c = corner + vec3::Constant(0.5*h);
-            double dA, dB;
-            if (!overlapTools::screenCell(A, pA, B, pB, c, r, dA, dB, queries)) return;
             const double lA = dA < -r ? 1.0 : sampledFraction(A, pA, corner, h, queries);
             if (lA <= 0) return;
             const double lB = dB < -r ? 1.0 : sampledFraction(B, pB, corner, h, queries);

@@ -295,28 +295,22 @@ contactGeometry uniformOverlap::evaluate
         return g;
     }
 
-    const double r = 0.5*std::sqrt(3.0)*h;
     contactCellFill cellFill(A, pA, B, pB, n);
     std::map<cellIndex, cellSum> sums;              // cells with overlap
     std::map<cellIndex, cellSum> sides;             // contact cells without
     std::map<cellIndex, boundaryLayers> layers;     // all contact cells
     long queries = 0, leaves = 0;
-    overlapTools::forEachLatticeCell
+    overlapTools::forEachScreenedCell
     (
-        overlapTools::latticeRange(box, h), h,
-        [&](const cellIndex& ci, const vec3& corner)
+        A, pA, B, pB, box, h, queries, leaves,
+        [&](const cellIndex& ci, const vec3& corner, double dA, double dB, double r)
         {
-            ++leaves;
-            const vec3 c = corner + vec3::Constant(0.5*h);
-            double dA, dB;
-            if (!overlapTools::screenCell(A, pA, B, pB, c, r, dA, dB, queries)) return;
-
             cellSum cs;
             if (dA < -r && dB < -r)
             {
                 const double v = h*h*h;
                 cs.volume = v;
-                cs.first = v*c;
+                cs.first = v*(corner + vec3::Constant(0.5*h));
                 cs.fullCells.push_back(corner);
             }
             else
