@@ -19,7 +19,7 @@ for line in open(os.path.join(folder, "contacts.dat")):
 if not force:
     sys.exit("no contact in " + os.path.join(folder, "contacts.dat"))
 t = sorted(force)
-params = dict(l.split() for l in open(os.path.join(here, "caseParameters")))
+params = dict(l.rstrip("\n").split(" ", 1) for l in open(os.path.join(here, "caseParameters")))
 fig, ax = plt.subplots(figsize=(7, 4.2))
 ax.plot([1e3 * x for x in t], [force[x] for x in t], ".-", ms=2)
 ax.set_xlabel("t [ms]")
