@@ -185,10 +185,75 @@ Foam::label Foam::immersedDEMState::project()
     }
     touched_.clear();
 
-    const indexedOctree<treeDataCell>& tree = mesh_.cellTree();
     const pointField& points = mesh_.points();
-    const labelListList& cellPoints = mesh_.cellPoints();
     const vectorField& C = mesh_.cellCentres();
+
+    // The cells whose bounding boxes meet a box. On a mesh that has just
+    // changed its topology (dynamicRefineFvMesh, every step or so)
+    // OpenFOAM's cell tree would be built again for the whole mesh first:
+    // seconds for a million cells. One pass over the cells' bounding
+    // boxes costs a small fraction of that, so it is used then; a static
+    // mesh keeps its tree and the cost follows the bodies.
+    const bool scan = mesh_.topoChanging();
+    List<treeBoundBox> cellBoxes;
+    if (scan)
+    {
+        const cellList& cells = mesh_.cells();
+        const faceList& faces = mesh_.faces();
+        cellBoxes.setSize(mesh_.nCells());
+        forAll(cells, celli)
+        {
+            treeBoundBox& b = cellBoxes[celli];
+            b = treeBoundBox(point::uniform(GREAT), point::uniform(-GREAT));
+            for (const label facei : cells[celli])
+            {
+                for (const label pi : faces[facei])
+                {
+                    b.min() = min(b.min(), points[pi]);
+                    b.max() = max(b.max(), points[pi]);
+                }
+            }
+        }
+    }
+    auto cellsIn = [&](const treeBoundBox& bb)
+    {
+        if (!scan)
+        {
+            const indexedOctree<treeDataCell>& tree = mesh_.cellTree();
+            const labelList hits(tree.findBox(bb));
+            labelList found(hits.size());
+            forAll(hits, i)
+            {
+                found[i] = tree.shapes().cellLabels()[hits[i]];
+            }
+            return found;
+        }
+        DynamicList<label> found;
+        forAll(cellBoxes, celli)
+        {
+            if (cellBoxes[celli].overlaps(bb)) found.append(celli);
+        }
+        return labelList(std::move(found));
+    };
+    // The cell's bounding box stands in for the cell (exact for the
+    // axis-aligned hexahedra of blockMesh and snappyHexMesh)
+    auto cellBox = [&](const label celli, vec3& lo, vec3& hi)
+    {
+        if (scan)
+        {
+            lo = c(cellBoxes[celli].min());
+            hi = c(cellBoxes[celli].max());
+            return;
+        }
+        lo = vec3::Constant(GREAT);
+        hi = vec3::Constant(-GREAT);
+        for (const label pi : mesh_.cellPoints()[celli])
+        {
+            const vec3 p = c(points[pi]);
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+    };
 
     label nCells = 0;
     const auto& bodies = dem_->bodies();
@@ -201,18 +266,10 @@ Foam::label Foam::immersedDEMState::project()
         const rigidBody& b = bodies[bi];
         const axisAlignedBox wb = b.geometry->worldBox(b.pose);
         const treeBoundBox bb(v(wb.min), v(wb.max));
-        for (const label i : tree.findBox(bb))
+        for (const label celli : cellsIn(bb))
         {
-            const label celli = tree.shapes().cellLabels()[i];
-            // The cell's bounding box stands in for the cell (exact for
-            // the axis-aligned hexahedra of blockMesh and snappyHexMesh)
-            vec3 lo = vec3::Constant(GREAT), hi = vec3::Constant(-GREAT);
-            for (const label pi : cellPoints[celli])
-            {
-                const vec3 p = c(points[pi]);
-                lo = lo.cwiseMin(p);
-                hi = hi.cwiseMax(p);
-            }
+            vec3 lo, hi;
+            cellBox(celli, lo, hi);
             const scalar f = boxFraction::of(*b.geometry, b.pose, lo, hi, 1);
             if (f > lambda[celli])
             {
@@ -246,9 +303,8 @@ Foam::label Foam::immersedDEMState::project()
             const vec3 lo = bi.min.cwiseMax(bj.min) - vec3::Constant(margin);
             const vec3 hi = bi.max.cwiseMin(bj.max) + vec3::Constant(margin);
             if ((lo.array() > hi.array()).any()) continue;
-            for (const label k : tree.findBox(treeBoundBox(v(lo), v(hi))))
+            for (const label celli : cellsIn(treeBoundBox(v(lo), v(hi))))
             {
-                const label celli = tree.shapes().cellLabels()[k];
                 if (bodyOf_[celli] < 0 && zone[celli] == 0)
                 {
                     touched_.append(celli);
