@@ -9,6 +9,7 @@
 #include "IFstream.H"
 #include "OSspecific.H"
 #include "clockTime.H"
+#include "surfaceFields.H"
 
 using namespace immersedDEM;
 
@@ -170,6 +171,9 @@ Foam::label Foam::immersedDEMState::project()
         zone = 0;
         bodyOf_.setSize(mesh_.nCells());
         bodyOf_ = -1;
+        wallK_.setSize(mesh_.nCells());
+        wallK_ = 0;
+        largestCellSize_ = 0;
     }
     else
     {
@@ -181,6 +185,7 @@ Foam::label Foam::immersedDEMState::project()
             Uib[celli] = Zero;
             zone[celli] = 0;
             bodyOf_[celli] = -1;
+            wallK_[celli] = 0;
         }
     }
     touched_.clear();
@@ -281,6 +286,29 @@ Foam::label Foam::immersedDEMState::project()
             }
         }
     }
+    if (sharp_)
+    {
+        if (!(largestCellSize_ > 0))
+        {
+            // The ring of fluid cells next to a body's centre-inside cells
+            // lies within one cell of its box
+            scalar h = 0;
+            for (const scalar Vc : V) h = max(h, cbrt(Vc));
+            largestCellSize_ = returnReduce(h, maxOp<scalar>());
+            // Split and graded hexahedra are not cubes
+            largestCellSize_ *= 2;
+        }
+        for (size_t bi = 0; bi < bodies.size(); ++bi)
+        {
+            if (dem_->isWall(int(bi))) continue;
+            const axisAlignedBox wb = bodies[bi].geometry->worldBox(bodies[bi].pose);
+            const vector grow(vector::uniform(largestCellSize_));
+            projectSharp
+            (
+                label(bi), cellsIn(treeBoundBox(v(wb.min) - grow, v(wb.max) + grow))
+            );
+        }
+    }
     for (const label celli : touched_)
     {
         projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
@@ -364,15 +392,141 @@ Foam::scalar Foam::immersedDEMState::coefficient(scalar l, scalar deltaT) const
 }
 
 
+Foam::scalar Foam::immersedDEMState::cellCoefficient
+(
+    const label celli,
+    const scalar deltaT
+) const
+{
+    if (!sharp_)
+    {
+        return coefficient(lambda_.primitiveField()[celli], deltaT);
+    }
+    if (!(deltaT > 0)) return 0;
+    const scalar KMax = (penalty_ > 0 ? penalty_ : 1e3)/deltaT;
+    return wallK_[celli] < 0 ? KMax : min(wallK_[celli], KMax);
+}
+
+
+void Foam::immersedDEMState::setSurface(const bool sharp, const scalar nu)
+{
+    const bool changed = sharp != sharp_ || (sharp && nu != nu_);
+    sharp_ = sharp;
+    nu_ = nu;
+    if (changed && bodyOf_.size())
+    {
+        project();
+    }
+}
+
+
+void Foam::immersedDEMState::projectSharp
+(
+    const label bi,
+    const labelList& candidates
+)
+{
+    const rigidBody& b = dem_->bodies()[bi];
+    const vectorField& C = mesh_.cellCentres();
+    const scalarField& V = mesh_.V();
+    const labelUList& own = mesh_.owner();
+    const labelUList& nei = mesh_.neighbour();
+    const cellList& cells = mesh_.cells();
+    const surfaceScalarField& magSf = mesh_.magSf();
+    const surfaceScalarField& deltaCoeffs = mesh_.nonOrthDeltaCoeffs();
+    const label nInternal = mesh_.nInternalFaces();
+    vectorField& Uib = Uib_.primitiveFieldRef();
+
+    auto phiAt = [&](const point& p)
+    {
+        return b.geometry->signedDistance(b.pose, c(p));
+    };
+    Map<scalar> phi(2*candidates.size());
+    for (const label celli : candidates)
+    {
+        phi.insert(celli, phiAt(C[celli]));
+    }
+
+    // Centres across processor faces: this side's centre plus the
+    // coupled delta (computed for a patch when one of its faces is met)
+    const polyBoundaryMesh& patches = mesh_.boundaryMesh();
+    PtrList<vectorField> patchDelta(patches.size());
+
+    for (const label celli : candidates)
+    {
+        const scalar phiC = phi[celli];
+        const label owner = bodyOf_[celli];
+        if (phiC <= 0)
+        {
+            // Inside: follows the body, unless another body has more of
+            // the cell
+            if (owner == bi)
+            {
+                wallK_[celli] = -1;
+            }
+            continue;
+        }
+        if (owner >= 0 && owner != bi) continue;
+
+        // Over the faces to centre-inside neighbours: the discrete
+        // Laplacian puts the no-slip value at the neighbour's centre, a
+        // distance |d| away, where the wall is at theta |d|; the source
+        // nu |Sf| deltaCoeff/V (1/theta - 1) (Uib - U) makes the cell's
+        // shear that of the wall where it is
+        scalar K = 0;
+        for (const label facei : cells[celli])
+        {
+            scalar phiN = 0;
+            scalar coeff = 0;
+            if (facei < nInternal)
+            {
+                const label n = own[facei] == celli ? nei[facei] : own[facei];
+                const auto iter = phi.cfind(n);
+                phiN = iter.found() ? *iter : phiAt(C[n]);
+                coeff = magSf[facei]*deltaCoeffs[facei];
+            }
+            else
+            {
+                const label patchi = patches.whichPatch(facei);
+                if (!patches[patchi].coupled()) continue;
+                const label pfi = facei - patches[patchi].start();
+                if (!patchDelta.set(patchi))
+                {
+                    patchDelta.set(patchi, mesh_.boundary()[patchi].delta().ptr());
+                }
+                phiN = phiAt(C[celli] + patchDelta[patchi][pfi]);
+                coeff =
+                    magSf.boundaryField()[patchi][pfi]
+                   *deltaCoeffs.boundaryField()[patchi][pfi];
+            }
+            if (phiN <= 0)
+            {
+                const scalar theta = phiC/(phiC - phiN);
+                K += nu_*coeff/V[celli]*(1 - theta)/theta;
+            }
+        }
+        if (K > 0)
+        {
+            if (owner < 0)
+            {
+                touched_.append(celli);
+                bodyOf_[celli] = bi;
+                Uib[celli] = v(b.pointVelocity(c(C[celli])));
+            }
+            wallK_[celli] = K;
+        }
+    }
+}
+
+
 Foam::tmp<Foam::scalarField>
 Foam::immersedDEMState::forcingCoefficient(scalar deltaT) const
 {
-    const scalarField& lambda = lambda_.primitiveField();
-    tmp<scalarField> tK(new scalarField(lambda.size(), Zero));
+    tmp<scalarField> tK(new scalarField(lambda_.size(), Zero));
     scalarField& K = tK.ref();
     for (const label celli : touched_)
     {
-        K[celli] = coefficient(lambda[celli], deltaT);
+        K[celli] = cellCoefficient(celli, deltaT);
     }
     return tK;
 }
@@ -405,7 +559,7 @@ void Foam::immersedDEMState::fluidSums
         const scalar w = lambda[celli]*V[celli];
         const vector r = C[celli] - v(dem_->bodies()[i].pose.position());
         const vector d =
-            coefficient(lambda[celli], deltaT)*V[celli]*(U[celli] - Uib[celli]);
+            cellCoefficient(celli, deltaT)*V[celli]*(U[celli] - Uib[celli]);
         const vector m = w*U[celli];
         penalty[i] += d;
         penaltyMoment[i] += r ^ d;

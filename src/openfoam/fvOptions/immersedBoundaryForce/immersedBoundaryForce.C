@@ -38,7 +38,10 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     {
         return false;
     }
-    immersedDEMChecks::allowOnly(dict, {"type", "active", "fields", "penalty", "name"});
+    immersedDEMChecks::allowOnly
+    (
+        dict, {"type", "active", "fields", "penalty", "name", "surface", "nu"}
+    );
     fieldNames_ = dict.getOrDefault<wordList>("fields", wordList{"U"});
     if (fieldNames_.size() != 1)
     {
@@ -50,7 +53,68 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     applied_.setSize(fieldNames_.size(), false);
     penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 1000);
     state_.setPenalty(penalty_);
+
+    const word surface(dict.getOrDefault<word>("surface", "diffuse"));
+    if (surface != "sharp" && surface != "diffuse")
+    {
+        FatalIOErrorInFunction(dict)
+            << "Keyword 'surface' in " << dict.name() << " is '" << surface
+            << "': it must be sharp or diffuse" << nl
+            << exit(FatalIOError);
+    }
+    scalar nu = 0;
+    if (surface == "sharp")
+    {
+        nu = viscosity(dict);
+    }
+    else if (dict.found("nu"))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Keyword 'nu' in " << dict.name()
+            << " is used by the sharp surface only (surface is diffuse)" << nl
+            << exit(FatalIOError);
+    }
+    state_.setSurface(surface == "sharp", nu);
     return true;
+}
+
+
+Foam::scalar Foam::fv::immersedBoundaryForce::viscosity
+(
+    const dictionary& dict
+) const
+{
+    if (dict.found("nu"))
+    {
+        return immersedDEMChecks::positiveOrDefault(dict, "nu", 1);
+    }
+    // The laminar viscosity the solver read (singlePhaseTransportModel)
+    const word transport("transportProperties");
+    if (!mesh_.foundObject<IOdictionary>(transport))
+    {
+        FatalIOErrorInFunction(dict)
+            << "The sharp surface of " << dict.name()
+            << " needs the fluid's kinematic viscosity: give it as 'nu' there"
+            << " (constant/" << transport << " is not loaded by this solver)"
+            << nl << exit(FatalIOError);
+    }
+    const IOdictionary& t = mesh_.lookupObject<IOdictionary>(transport);
+    if (!t.found("nu"))
+    {
+        FatalIOErrorInFunction(t)
+            << "Keyword 'nu' is missing from " << t.objectPath()
+            << ": the sharp surface of " << dict.name()
+            << " needs the kinematic viscosity (or give 'nu' there)" << nl
+            << exit(FatalIOError);
+    }
+    const scalar nu = dimensionedScalar("nu", dimViscosity, t).value();
+    if (!(nu > 0))
+    {
+        FatalIOErrorInFunction(t)
+            << "Keyword 'nu' in " << t.objectPath() << " is " << nu
+            << ": it must be > 0" << nl << exit(FatalIOError);
+    }
+    return nu;
 }
 
 
