@@ -298,11 +298,11 @@ Foam::label Foam::immersedDEMState::project()
             // Split and graded hexahedra are not cubes
             largestCellSize_ *= 2;
         }
+        const vector grow(vector::uniform(largestCellSize_));
         for (size_t bi = 0; bi < bodies.size(); ++bi)
         {
             if (dem_->isWall(int(bi))) continue;
             const axisAlignedBox wb = bodies[bi].geometry->worldBox(bodies[bi].pose);
-            const vector grow(vector::uniform(largestCellSize_));
             projectSharp
             (
                 label(bi), cellsIn(treeBoundBox(v(wb.min) - grow, v(wb.max) + grow))
@@ -387,7 +387,7 @@ void Foam::immersedDEMState::projectIfMeshChanged()
 Foam::scalar Foam::immersedDEMState::coefficient(scalar l, scalar deltaT) const
 {
     if (!(l > 0) || !(deltaT > 0)) return 0;
-    const scalar aMax = penalty_ > 0 ? penalty_ : 1e3;
+    const scalar aMax = penaltyCap();
     return (l*(1 + aMax) >= aMax ? aMax : l/(1 - l))/deltaT;
 }
 
@@ -403,7 +403,7 @@ Foam::scalar Foam::immersedDEMState::cellCoefficient
         return coefficient(lambda_.primitiveField()[celli], deltaT);
     }
     if (!(deltaT > 0)) return 0;
-    const scalar KMax = (penalty_ > 0 ? penalty_ : 1e3)/deltaT;
+    const scalar KMax = penaltyCap()/deltaT;
     return wallK_[celli] < 0 ? KMax : min(wallK_[celli], KMax);
 }
 
@@ -473,6 +473,8 @@ void Foam::immersedDEMState::projectSharp
         // distance |d| away, where the wall is at theta |d|; the source
         // nu |Sf| deltaCoeff/V (1/theta - 1) (Uib - U) makes the cell's
         // shear that of the wall where it is
+        // A signed distance changes no faster than the position, so a
+        // neighbour centre nearer than phiC is outside: no query for it
         scalar K = 0;
         for (const label facei : cells[celli])
         {
@@ -481,6 +483,7 @@ void Foam::immersedDEMState::projectSharp
             if (facei < nInternal)
             {
                 const label n = own[facei] == celli ? nei[facei] : own[facei];
+                if (phiC > mag(C[n] - C[celli])) continue;
                 const auto iter = phi.cfind(n);
                 phiN = iter.found() ? *iter : phiAt(C[n]);
                 coeff = magSf[facei]*deltaCoeffs[facei];
@@ -494,7 +497,9 @@ void Foam::immersedDEMState::projectSharp
                 {
                     patchDelta.set(patchi, mesh_.boundary()[patchi].delta().ptr());
                 }
-                phiN = phiAt(C[celli] + patchDelta[patchi][pfi]);
+                const vector& d = patchDelta[patchi][pfi];
+                if (phiC > mag(d)) continue;
+                phiN = phiAt(C[celli] + d);
                 coeff =
                     magSf.boundaryField()[patchi][pfi]
                    *deltaCoeffs.boundaryField()[patchi][pfi];
