@@ -54,7 +54,7 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 1000);
     state_.setPenalty(penalty_);
 
-    const word surface(dict.getOrDefault<word>("surface", "diffuse"));
+    const word surface(dict.getOrDefault<word>("surface", "sharp"));
     if (surface != "sharp" && surface != "diffuse")
     {
         FatalIOErrorInFunction(dict)
