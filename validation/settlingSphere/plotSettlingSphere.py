@@ -5,9 +5,12 @@ and the plugin's share of the run time (from the immersedDEM log lines).
 
     plotSettlingSphere.py <work folder> E1 E2 ...
 
+Also compares with the Navier-Stokes terminal velocity on a body-fitted
+mesh (bodyFitted/results.txt, the finest level there) where it exists.
+
 Writes settlingSphere.png and results.txt next to this script; exits 1 when a
-terminal velocity is off by more than 3% or a sphere does not come to rest
-on the bottom."""
+terminal velocity is off the measured one by more than 3% or a sphere does
+not come to rest on the bottom."""
 import os, re, sys
 
 import matplotlib
@@ -35,6 +38,19 @@ def trajectory(case):
 R, d = 0.0075, 0.015
 
 
+def bodyFitted():
+    """Terminal velocity per fluid from bodyFitted/results.txt, finest level"""
+    best = {}
+    path = os.path.join(here, "bodyFitted", "results.txt")
+    if not os.path.exists(path):
+        return {}
+    for line in open(path):
+        m = re.match(r"(E\d) level (\d+) .*terminal velocity (\S+) m/s", line)
+        if m and int(m.group(2)) >= best.get(m.group(1), (-1, 0))[0]:
+            best[m.group(1)] = (int(m.group(2)), float(m.group(3)))
+    return {f: u for f, (level, u) in best.items()}
+
+
 def pluginShare(log):
     """Seconds in projection + DEM + forcing over the solver's wall time"""
     plugin, total = 0.0, 0.0
@@ -49,6 +65,7 @@ def pluginShare(log):
 
 
 rows, ok = [], True
+reference = bodyFitted()
 fig, ax = plt.subplots(figsize=(7, 4.5))
 for f in fluids:
     case = os.path.join(work, f)
@@ -62,20 +79,25 @@ for f in fluids:
     err = u / measured[f] - 1
     plugin, total = pluginShare(os.path.join(case, "log.pimpleFoam"))
     ok &= abs(err) <= tolerance
-    rows.append("%s  %.4f  %.3f  %+6.2f%%  %7.1f  %6.1f  %5.1f%%  %s"
-                % (f, u, measured[f], 100 * err, total, plugin, 100 * plugin / max(total, 1e-30),
-                   "yes" if rests else "NO"))
+    bf = ("%.4f  %+6.2f%%" % (reference[f], 100 * (u / reference[f] - 1))
+          if f in reference else "-  -")
+    rows.append("%s  %.4f  %.3f  %+6.2f%%  %s  %7.1f  %6.1f  %5.1f%%  %s"
+                % (f, u, measured[f], 100 * err, bf, total, plugin,
+                   100 * plugin / max(total, 1e-30), "yes" if rests else "NO"))
     line, = ax.plot(t, w, label="%s simulated" % f)
     ax.axhline(measured[f], color=line.get_color(), ls="--", lw=0.8)
+    if f in reference:
+        ax.axhline(reference[f], color=line.get_color(), ls=":", lw=0.8)
 ax.set_xlabel("t [s]")
 ax.set_ylabel("settling velocity [m/s]")
-ax.set_title("Settling sphere (ten Cate et al. 2002); dashed: measured terminal velocity")
+ax.set_title("Settling sphere (ten Cate et al. 2002)\ndashed: measured; dotted: body-fitted Navier-Stokes (duct)",
+             fontsize=10)
 ax.legend(loc="lower right")
 ax.grid(alpha=0.3)
 fig.tight_layout()
 fig.savefig(os.path.join(here, "settlingSphere.png"), dpi=120)
 
-header = ("fluid  u_sim [m/s]  u_measured  error  run [s]  plugin [s]  share  rests on the bottom\n")
+header = ("fluid  u_sim [m/s]  u_measured  error  u_bodyFitted  error  run [s]  plugin [s]  share  rests on the bottom\n")
 text = header + "\n".join(rows) + "\n"
 open(os.path.join(here, "results.txt"), "w").write(text)
 print(text)
