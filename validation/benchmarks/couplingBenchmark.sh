@@ -58,7 +58,8 @@ for v in ("standard", "wide"):
             steps += 1
             perStep.append(float(m.group(1)))
             p += float(m.group(1)); dem += float(m.group(2)); f += float(m.group(3))
-        m = re.match(r"ExecutionTime = (\S+) s", line)
+        # Wall-clock, like the plugin's timers
+        m = re.match(r"ExecutionTime = \S+ s\s+ClockTime = (\S+) s", line)
         if m:
             total = float(m.group(1))
     share = (p + dem + f) / total

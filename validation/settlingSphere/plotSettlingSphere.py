@@ -52,13 +52,15 @@ def bodyFitted():
 
 
 def pluginShare(log):
-    """Seconds in projection + DEM + forcing over the solver's wall time"""
+    """Seconds in projection + DEM + forcing over the solver's wall time
+    (both wall-clock: the plugin's timers are, and CPU time would overstate
+    the share while other jobs share the cores)"""
     plugin, total = 0.0, 0.0
     for line in open(log):
         m = re.search(r"seconds: projection (\S+) DEM (\S+) forcing (\S+)", line)
         if m:
             plugin += sum(float(x) for x in m.groups())
-        m = re.match(r"ExecutionTime = (\S+) s", line)
+        m = re.match(r"ExecutionTime = \S+ s\s+ClockTime = (\S+) s", line)
         if m:
             total = float(m.group(1))
     return plugin, total
