@@ -9,12 +9,23 @@ axisAlignedBox shape::worldBox(const bodyPose& pose) const
 }
 
 
-surfacePoint shape::closest(const bodyPose& pose, const vec3& p) const
+namespace
 {
-    surfacePoint sp = closest(pose.toBody(p));
+
+surfacePoint toWorld(const bodyPose& pose, surfacePoint sp)
+{
     sp.point = pose.toWorld(sp.point);
     sp.normal = pose.vectorToWorld(sp.normal);
+    sp.curvature = pose.rotation()*sp.curvature*pose.rotation().transpose();
     return sp;
+}
+
+} // End anonymous namespace
+
+
+surfacePoint shape::closest(const bodyPose& pose, const vec3& p) const
+{
+    return toWorld(pose, closest(pose.toBody(p)));
 }
 
 
@@ -23,10 +34,7 @@ surfacePoint shape::closest
     const bodyPose& pose, const vec3& p, double distanceBound
 ) const
 {
-    surfacePoint sp = closest(pose.toBody(p), distanceBound);
-    sp.point = pose.toWorld(sp.point);
-    sp.normal = pose.vectorToWorld(sp.normal);
-    return sp;
+    return toWorld(pose, closest(pose.toBody(p), distanceBound));
 }
 
 } // End namespace immersedDEM

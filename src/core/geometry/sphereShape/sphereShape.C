@@ -50,6 +50,7 @@ surfacePoint sphereShape::closest(const vec3& p) const
     sp.normal = r > 0 ? vec3(p/r) : vec3(vec3::UnitX());
     sp.point = R_*sp.normal;
     sp.distance = r - R_;
+    sp.curvature = (mat3::Identity() - sp.normal*sp.normal.transpose())/R_;
     return sp;
 }
 

@@ -54,6 +54,71 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
             edgeNormal_[fi][k] = edgeSum[edgeKey(f[k], f[(k + 1) % 3])].normalized();
         }
     }
+    computeCurvature(s);
+}
+
+
+void surfaceDistance::computeCurvature(const triangleSoup& s)
+{
+    const size_t nF = s.faces.size();
+    std::vector<std::vector<int>> pointFaces(s.points.size());
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        for (int k = 0; k < 3; ++k) pointFaces[s.faces[fi][k]].push_back(int(fi));
+    }
+    auto cornerAngle = [&](int fi, int v)
+    {
+        const triFace& f = s.faces[fi];
+        const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+        const vec3& p0 = s.points[v];
+        const vec3 e1 = (s.points[f[(k + 1) % 3]] - p0).normalized();
+        const vec3 e2 = (s.points[f[(k + 2) % 3]] - p0).normalized();
+        return std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
+    };
+    const double cosCrease = std::cos(creaseAngleDegrees*M_PI/180);
+
+    faceCurvature_.assign(nF, mat3::Zero());
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        const triFace& f = s.faces[fi];
+        const vec3& nf = faceNormal_[fi];
+        std::array<vec3, 3> cn;
+        for (int k = 0; k < 3; ++k)
+        {
+            vec3 sum = vec3::Zero();
+            for (int g : pointFaces[f[k]])
+            {
+                if (faceNormal_[g].dot(nf) >= cosCrease)
+                {
+                    sum += cornerAngle(g, f[k])*faceNormal_[g];
+                }
+            }
+            cn[k] = sum.norm() > 0 ? vec3(sum.normalized()) : nf;
+        }
+        // Tangent frame (u, v) of the face; S = [a b; b c] in it
+        const vec3 u = (s.points[f[1]] - s.points[f[0]]).normalized();
+        const vec3 v = nf.cross(u);
+        Eigen::Matrix<double, 6, 3> M = Eigen::Matrix<double, 6, 3>::Zero();
+        Eigen::Matrix<double, 6, 1> r;
+        for (int k = 0; k < 3; ++k)
+        {
+            const int i = (k + 1) % 3, j = (k + 2) % 3;
+            const vec3 e = s.points[f[j]] - s.points[f[i]];
+            const vec3 dn = cn[j] - cn[i];
+            const double eu = e.dot(u), ev = e.dot(v);
+            M.row(2*k) << eu, ev, 0;
+            M.row(2*k + 1) << 0, eu, ev;
+            r(2*k) = dn.dot(u);
+            r(2*k + 1) = dn.dot(v);
+        }
+        const vec3 abc = M.colPivHouseholderQr().solve(r);
+        if (abc.allFinite())
+        {
+            faceCurvature_[fi] = abc(0)*u*u.transpose()
+              + abc(1)*(u*v.transpose() + v*u.transpose())
+              + abc(2)*v*v.transpose();
+        }
+    }
 }
 
 
@@ -76,6 +141,7 @@ surfacePoint surfaceDistance::closest(const vec3& p, double maxDistSqr, vec3* ps
     const double dist = std::sqrt(h.distSqr);
     const bool in = d.dot(pseudo) < 0;
     sp.distance = in ? -dist : dist;
+    sp.curvature = faceCurvature_[h.face];
     // Outward: along p - closest, its sign fixed by the side
     sp.normal = dist > 0 ? vec3((in ? -d : d)/dist) : pseudo;
     if (pseudoOut)

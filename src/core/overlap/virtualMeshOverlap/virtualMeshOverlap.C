@@ -28,6 +28,100 @@ struct baseCellSum
     std::vector<vec3> edgePoints;
 };
 
+//- phi(t) = alpha t^2 + beta t + gamma along a column x + t e_ax: the
+//  surface model of sp (negative inside) there
+struct columnQuadratic
+{
+    double alpha, beta, gamma;
+};
+
+columnQuadratic surfaceAlongColumn(const surfacePoint& sp, const vec3& x, int ax)
+{
+    // phi = n.r + (1/2) r^T S r, r = x + t e_ax - point (S n = 0, so only
+    // the tangential part of r counts)
+    const vec3 r = x - sp.point;
+    const vec3 Sr = sp.curvature*r;
+    return
+    {
+        0.5*sp.curvature(ax, ax),
+        sp.normal[ax] + Sr[ax],
+        sp.normal.dot(r) + 0.5*r.dot(Sr)
+    };
+}
+
+//- The part of a column (at most three pieces) where every clipped
+//  quadratic is <= 0
+struct columnSet
+{
+    int size = 1;
+    double lo[4], hi[4];
+
+    columnSet(double l, double h) { lo[0] = l; hi[0] = h; }
+
+    void keep(double l, double h, columnSet& out) const
+    {
+        for (int k = 0; k < size; ++k)
+        {
+            const double a = std::max(lo[k], l), b = std::min(hi[k], h);
+            if (b > a && out.size < 4)
+            {
+                out.lo[out.size] = a;
+                out.hi[out.size] = b;
+                ++out.size;
+            }
+        }
+    }
+
+    void clip(const columnQuadratic& q)
+    {
+        const double inf = std::numeric_limits<double>::infinity();
+        columnSet out(0, 0);
+        out.size = 0;
+        // Linear where the bending over the column is negligible
+        const double span = hi[size - 1] - lo[0];
+        if (std::abs(q.alpha)*span <= 1e-9*std::abs(q.beta) || q.alpha == 0)
+        {
+            if (q.beta == 0)
+            {
+                if (q.gamma <= 0) keep(-inf, inf, out);
+            }
+            else if (q.beta > 0)
+            {
+                keep(-inf, -q.gamma/q.beta, out);
+            }
+            else
+            {
+                keep(-q.gamma/q.beta, inf, out);
+            }
+            *this = out;
+            return;
+        }
+        const double disc = q.beta*q.beta - 4*q.alpha*q.gamma;
+        if (disc <= 0)
+        {
+            // One sign throughout: that of alpha
+            if (q.alpha < 0) keep(-inf, inf, out);
+            *this = out;
+            return;
+        }
+        // Roots without cancellation
+        const double sq = std::sqrt(disc);
+        const double qq = -0.5*(q.beta + (q.beta >= 0 ? sq : -sq));
+        double t1 = qq/q.alpha, t2 = q.gamma/qq;
+        if (t1 > t2) std::swap(t1, t2);
+        if (q.alpha > 0)
+        {
+            keep(t1, t2, out);
+        }
+        else
+        {
+            keep(-inf, t1, out);
+            keep(t2, inf, out);
+        }
+        *this = out;
+    }
+};
+
 class octreeWalk
 {
     const shape& A_;
@@ -147,10 +241,13 @@ public:
         baseCellSum& sum
     )
     {
-        // Tangent-plane models of the two signed distances in the leaf,
-        // integrated exactly along columns parallel to the axis the planes
+        // Second-order models of the two surfaces in the leaf (the tangent
+        // plane at the closest point bent by the surface's curvature there),
+        // integrated exactly along columns parallel to the axis the normals
         // face most, at n x n column centres: exact for a plane facing that
-        // axis (no quantisation where an overlap is a few leaves thick)
+        // axis (no quantisation where an overlap is a few leaves thick), and
+        // free of the tangent plane's O(kappa s^2) excess where both
+        // surfaces are convex
         const vec3 nMax = (inA ? vec3::Zero() : vec3(a.normal.cwiseAbs()))
             .cwiseMax(inB ? vec3::Zero() : vec3(b.normal.cwiseAbs()));
         int ax = 0;
@@ -169,29 +266,12 @@ public:
                 vec3 x = c;
                 x[u] += (i + 0.5 - 0.5*n)*ds;
                 x[w] += (j + 0.5 - 0.5*n)*ds;
-                double lo = -0.5*s, hi = 0.5*s;
-                // d + n.(x - c) + n_ax t <= 0, t the offset along the column
-                auto clip = [&](const surfacePoint& sp)
+                columnSet inside(-0.5*s, 0.5*s);
+                if (!inA) inside.clip(surfaceAlongColumn(a, x, ax));
+                if (!inB) inside.clip(surfaceAlongColumn(b, x, ax));
+                for (int k = 0; k < inside.size; ++k)
                 {
-                    const double q = -(sp.distance + sp.normal.dot(x - c));
-                    const double na = sp.normal[ax];
-                    if (std::abs(na) < 1e-12)
-                    {
-                        if (q < 0) hi = lo;
-                    }
-                    else if (na > 0)
-                    {
-                        hi = std::min(hi, q/na);
-                    }
-                    else
-                    {
-                        lo = std::max(lo, q/na);
-                    }
-                };
-                if (!inA) clip(a);
-                if (!inB) clip(b);
-                if (hi > lo)
-                {
+                    const double lo = inside.lo[k], hi = inside.hi[k];
                     const double v = (hi - lo)*ds*ds;
                     volume += v;
                     vec3 xm = x;
