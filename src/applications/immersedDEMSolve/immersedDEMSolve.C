@@ -68,7 +68,7 @@ int main(int argc, char *argv[])
     Info<< "Reading " << properties.objectPath() << endl;
     auto dem = immersedDEMReader::read
     (
-        properties, runTime.constant()/"triSurface", g.value()
+        properties, runTime.globalPath()/runTime.constant()/"triSurface", g.value()
     );
     dem->setTime(runTime.value());
 

@@ -95,7 +95,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     Info<< "immersedDEM: reading " << properties_.objectPath() << endl;
     dem_ = immersedDEMReader::read
     (
-        properties_, mesh.time().constant()/"triSurface", g.value(), &mesh
+        properties_, mesh.time().globalPath()/mesh.time().constant()/"triSurface", g.value(), &mesh
     );
     dem_->setTime(mesh.time().value());
     Info<< "immersedDEM: " << nBodies() << " bodies, "
