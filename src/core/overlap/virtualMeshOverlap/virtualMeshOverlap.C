@@ -35,19 +35,44 @@ struct columnQuadratic
     double alpha, beta, gamma;
 };
 
-columnQuadratic surfaceAlongColumn(const surfacePoint& sp, const vec3& x, int ax)
+//- The surface model of sp over a leaf's columns: phi = n.r + (1/2) r^T S r,
+//  r = x - point (S n = 0: only the tangential part of r counts), with the
+//  column at offsets (a, b) along (e_u, e_w) from the leaf centre c:
+//  beta and gamma are polynomials in a and b, set up once per leaf
+class leafSurface
 {
-    // phi = n.r + (1/2) r^T S r, r = x + t e_ax - point (S n = 0, so only
-    // the tangential part of r counts)
-    const vec3 r = x - sp.point;
-    const vec3 Sr = sp.curvature*r;
-    return
+    double alpha_, beta0_, betaA_, betaB_;
+    double gamma0_, gammaA_, gammaB_, gammaAA_, gammaAB_, gammaBB_;
+
+public:
+
+    leafSurface(const surfacePoint& sp, const vec3& c, int ax, int u, int w)
     {
-        0.5*sp.curvature(ax, ax),
-        sp.normal[ax] + Sr[ax],
-        sp.normal.dot(r) + 0.5*r.dot(Sr)
-    };
-}
+        const mat3& S = sp.curvature;
+        const vec3 r0 = c - sp.point;
+        const vec3 Sr0 = S*r0;
+        alpha_ = 0.5*S(ax, ax);
+        beta0_ = sp.normal[ax] + Sr0[ax];
+        betaA_ = S(ax, u);
+        betaB_ = S(ax, w);
+        gamma0_ = sp.normal.dot(r0) + 0.5*r0.dot(Sr0);
+        gammaA_ = sp.normal[u] + Sr0[u];
+        gammaB_ = sp.normal[w] + Sr0[w];
+        gammaAA_ = 0.5*S(u, u);
+        gammaAB_ = S(u, w);
+        gammaBB_ = 0.5*S(w, w);
+    }
+
+    columnQuadratic column(double a, double b) const
+    {
+        return
+        {
+            alpha_,
+            beta0_ + a*betaA_ + b*betaB_,
+            gamma0_ + a*(gammaA_ + a*gammaAA_ + b*gammaAB_) + b*(gammaB_ + b*gammaBB_)
+        };
+    }
+};
 
 //- The part of a column (at most three pieces) where every clipped
 //  quadratic is <= 0
@@ -77,46 +102,49 @@ struct columnSet
         const double inf = std::numeric_limits<double>::infinity();
         columnSet out(0, 0);
         out.size = 0;
-        // Linear where the bending over the column is negligible
+        // Linear where the bending moves the crossing by less than 1e-6 of
+        // the column
         const double span = hi[size - 1] - lo[0];
-        if (std::abs(q.alpha)*span <= 1e-9*std::abs(q.beta) || q.alpha == 0)
+        if (std::abs(q.alpha)*span <= 1e-6*std::abs(q.beta))
         {
-            if (q.beta == 0)
-            {
-                if (q.gamma <= 0) keep(-inf, inf, out);
-            }
-            else if (q.beta > 0)
+            if (q.beta > 0)
             {
                 keep(-inf, -q.gamma/q.beta, out);
             }
-            else
+            else if (q.beta < 0)
             {
                 keep(-q.gamma/q.beta, inf, out);
             }
-            *this = out;
-            return;
-        }
-        const double disc = q.beta*q.beta - 4*q.alpha*q.gamma;
-        if (disc <= 0)
-        {
-            // One sign throughout: that of alpha
-            if (q.alpha < 0) keep(-inf, inf, out);
-            *this = out;
-            return;
-        }
-        // Roots without cancellation
-        const double sq = std::sqrt(disc);
-        const double qq = -0.5*(q.beta + (q.beta >= 0 ? sq : -sq));
-        double t1 = qq/q.alpha, t2 = q.gamma/qq;
-        if (t1 > t2) std::swap(t1, t2);
-        if (q.alpha > 0)
-        {
-            keep(t1, t2, out);
+            else if (q.gamma <= 0)
+            {
+                keep(-inf, inf, out);
+            }
         }
         else
         {
-            keep(-inf, t1, out);
-            keep(t2, inf, out);
+            const double disc = q.beta*q.beta - 4*q.alpha*q.gamma;
+            if (disc <= 0)
+            {
+                // One sign throughout: that of alpha
+                if (q.alpha < 0) keep(-inf, inf, out);
+            }
+            else
+            {
+                // Roots without cancellation
+                const double sq = std::sqrt(disc);
+                const double qq = -0.5*(q.beta + (q.beta >= 0 ? sq : -sq));
+                double t1 = qq/q.alpha, t2 = q.gamma/qq;
+                if (t1 > t2) std::swap(t1, t2);
+                if (q.alpha > 0)
+                {
+                    keep(t1, t2, out);
+                }
+                else
+                {
+                    keep(-inf, t1, out);
+                    keep(t2, inf, out);
+                }
+            }
         }
         *this = out;
     }
@@ -259,16 +287,19 @@ public:
         double volume = 0;
         vec3 first = vec3::Zero();
         vec3 areaA = vec3::Zero();
+        const leafSurface surfA(a, c, ax, u, w), surfB(b, c, ax, u, w);
         for (int i = 0; i < n; ++i)
         {
+            const double oi = (i + 0.5 - 0.5*n)*ds;
             for (int j = 0; j < n; ++j)
             {
+                const double oj = (j + 0.5 - 0.5*n)*ds;
                 vec3 x = c;
-                x[u] += (i + 0.5 - 0.5*n)*ds;
-                x[w] += (j + 0.5 - 0.5*n)*ds;
+                x[u] += oi;
+                x[w] += oj;
                 columnSet inside(-0.5*s, 0.5*s);
-                if (!inA) inside.clip(surfaceAlongColumn(a, x, ax));
-                if (!inB) inside.clip(surfaceAlongColumn(b, x, ax));
+                if (!inA) inside.clip(surfA.column(oi, oj));
+                if (!inB) inside.clip(surfB.column(oi, oj));
                 for (int k = 0; k < inside.size; ++k)
                 {
                     const double lo = inside.lo[k], hi = inside.hi[k];
