@@ -84,16 +84,22 @@ def plugin(case, model):
     return tot
 
 
-def finished(case, model):
-    """Whether pimpleFoam ran to its endTime (a dynamic-refinement run may
-    be stopped after the contact: its wall time is then a lower bound)"""
-    log = os.path.join(folder(case, model), "log.pimpleFoam")
-    return os.path.isfile(log) and any(l.strip() == "End" for l in open(log))
-
-
 def reached(case, model):
     rows = table(case, model, "bodies.dat")
     return float(rows[-1][0]) if rows else 0.0
+
+
+def finished(case, model):
+    """Whether pimpleFoam ran to its end and as far in time as the case's
+    other models (a dynamic-refinement run may be stopped, or given an
+    earlier end with Allrun -dynamicEndTime, after the contact: its wall
+    time is then a lower bound)"""
+    log = os.path.join(folder(case, model), "log.pimpleFoam")
+    if not (os.path.isfile(log) and any(l.strip() == "End" for l in open(log))):
+        return False
+    others = [reached(case, m) for m in ("sphere", "cells", "virtualMesh", "dynamic")
+              if m != model and available(case, m)]
+    return not others or reached(case, model) >= max(others) - 1e-9
 
 
 def steps(case, model):
