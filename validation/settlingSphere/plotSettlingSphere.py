@@ -101,7 +101,9 @@ fig.savefig(os.path.join(here, "settlingSphere.png"), dpi=120)
 
 header = ("fluid  u_sim [m/s]  u_measured  error  u_bodyFitted  error  run [s]  plugin [s]  share  rests on the bottom\n")
 text = header + "\n".join(rows) + "\n"
-open(os.path.join(here, "results.txt"), "w").write(text)
+tmp = os.path.join(here, "results.txt.tmp")
+open(tmp, "w").write(text)
+os.replace(tmp, os.path.join(here, "results.txt"))   # never half-written
 print(text)
 print("All within 3% and at rest on the bottom" if ok else "FAILED: a terminal velocity is off by more than 3%, or a sphere does not rest on the bottom")
 sys.exit(0 if ok else 1)

@@ -28,6 +28,7 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
     vertexNormal_.assign(s.points.size(), vec3::Zero());
     std::unordered_map<std::uint64_t, vec3> edgeSum;
     edgeSum.reserve(3*nF);
+    std::vector<std::array<double, 3>> cornerAngle(nF);
     for (size_t fi = 0; fi < nF; ++fi)
     {
         const triFace& f = s.faces[fi];
@@ -40,6 +41,7 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
             const vec3 e1 = (s.points[f[(k + 1) % 3]] - p0).normalized();
             const vec3 e2 = (s.points[f[(k + 2) % 3]] - p0).normalized();
             const double angle = std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
+            cornerAngle[fi][k] = angle;
             vertexNormal_[f[k]] += angle*n;
             // Not operator[]: it would leave a new (Eigen) vec3 uninitialised
             edgeSum.emplace(edgeKey(f[k], f[(k + 1) % 3]), vec3::Zero()).first->second += n;
@@ -54,27 +56,23 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
             edgeNormal_[fi][k] = edgeSum[edgeKey(f[k], f[(k + 1) % 3])].normalized();
         }
     }
-    computeCurvature(s);
+    computeCurvature(s, cornerAngle);
 }
 
 
-void surfaceDistance::computeCurvature(const triangleSoup& s)
+void surfaceDistance::computeCurvature
+(
+    const triangleSoup& s,
+    const std::vector<std::array<double, 3>>& cornerAngle
+)
 {
     const size_t nF = s.faces.size();
-    std::vector<std::vector<int>> pointFaces(s.points.size());
+    // The corners at each point: (face, corner index)
+    std::vector<std::vector<std::pair<int, int>>> pointCorners(s.points.size());
     for (size_t fi = 0; fi < nF; ++fi)
     {
-        for (int k = 0; k < 3; ++k) pointFaces[s.faces[fi][k]].push_back(int(fi));
+        for (int k = 0; k < 3; ++k) pointCorners[s.faces[fi][k]].emplace_back(int(fi), k);
     }
-    auto cornerAngle = [&](int fi, int v)
-    {
-        const triFace& f = s.faces[fi];
-        const int k = f[0] == v ? 0 : f[1] == v ? 1 : 2;
-        const vec3& p0 = s.points[v];
-        const vec3 e1 = (s.points[f[(k + 1) % 3]] - p0).normalized();
-        const vec3 e2 = (s.points[f[(k + 2) % 3]] - p0).normalized();
-        return std::acos(std::max(-1.0, std::min(1.0, e1.dot(e2))));
-    };
     const double cosCrease = std::cos(creaseAngleDegrees*M_PI/180);
 
     faceCurvature_.assign(nF, mat3::Zero());
@@ -86,11 +84,12 @@ void surfaceDistance::computeCurvature(const triangleSoup& s)
         for (int k = 0; k < 3; ++k)
         {
             vec3 sum = vec3::Zero();
-            for (int g : pointFaces[f[k]])
+            for (const auto& gc : pointCorners[f[k]])
             {
-                if (faceNormal_[g].dot(nf) >= cosCrease)
+                const vec3& ng = faceNormal_[gc.first];
+                if (ng.dot(nf) >= cosCrease)
                 {
-                    sum += cornerAngle(g, f[k])*faceNormal_[g];
+                    sum += cornerAngle[gc.first][gc.second]*ng;
                 }
             }
             cn[k] = sum.norm() > 0 ? vec3(sum.normalized()) : nf;

@@ -99,6 +99,7 @@ struct columnSet
 
     void clip(const columnQuadratic& q)
     {
+        if (size == 0) return;
         const double inf = std::numeric_limits<double>::infinity();
         columnSet out(0, 0);
         out.size = 0;
