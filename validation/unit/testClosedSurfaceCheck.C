@@ -312,3 +312,59 @@ TEST(closedSurfaceCheck, inwardOrientationRepaired)
     EXPECT_TRUE(contains(both.warnings()[1], "inward orientation repaired (1 of 2 shells"))
         << both.warnings()[1];
 }
+
+
+// Issue 17: a hollow body (a cavity) was counted twice, 1.125 for the
+// hollow 0.875: nested shells are rejected with the shell count
+TEST(closedSurfaceCheck, nestedShellsRejected)
+{
+    const triangleSoup outer = primitiveMeshes::box(vec3::Constant(0.5));
+    const triangleSoup inner = primitiveMeshes::box(vec3::Constant(0.25));
+
+    // The inner shell facing inwards (a correctly oriented cavity)
+    triangleSoup cavity = inner;
+    for (triFace& f : cavity.faces) std::swap(f[1], f[2]);
+    EXPECT_TRUE(shapeThrows
+    (
+        concat(outer, cavity),
+        {"Surface \"body.stl\" has nested shells: 2 closed shells, 1 of them inside another",
+         "cavity is not supported"}
+    ));
+
+    // Facing outwards: the same error, not a silent sum of the volumes
+    EXPECT_TRUE(shapeThrows(concat(outer, inner), {"has nested shells: 2 closed shells, 1 of"}));
+
+    // Inner shell first in the file, off centre, and a third shell nested
+    // in it: two inside another
+    triangleSoup small = primitiveMeshes::box(vec3::Constant(0.05));
+    primitiveMeshes::transform(small, mat3::Identity(), vec3(0.1, 0, 0));
+    EXPECT_TRUE(shapeThrows
+    (
+        concat(concat(inner, outer), small), {"has nested shells: 3 closed shells, 2 of them"}
+    ));
+
+    // Side by side is still one body of two shells
+    EXPECT_NO_THROW(triangleMeshShape(merged(outer, boxAt(vec3(2, 0, 0), vec3::Constant(0.25))), "two"));
+
+    // The winding test directly: shell 1 inside shell 0
+    const triangleSoup s = concat(outer, inner);
+    std::vector<int> shell(s.faces.size(), 0);
+    for (size_t i = outer.faces.size(); i < s.faces.size(); ++i) shell[i] = 1;
+    const std::vector<int> in = closedSurfaceCheck::enclosingShells(s, shell, 2);
+    EXPECT_EQ(in[0], -1);
+    EXPECT_EQ(in[1], 0);
+}
+
+
+// Issue 17: a vertex at 1e300 was reported as "encloses zero volume"
+TEST(closedSurfaceCheck, coordinateOutOfRange)
+{
+    triangleSoup s = primitiveMeshes::box(vec3::Constant(0.5));
+    s.points[3].x() = 1e300;
+    EXPECT_TRUE(shapeThrows(s, {"Surface \"body.stl\": vertex 3 (1e+300", "out of range", "1e+12"}));
+    s.points[3].x() = -2e12;
+    EXPECT_TRUE(shapeThrows(s, {"vertex 3 (-2e+12", "out of range"}));
+    // At the limit: accepted as far as the range goes (a thin sliver body)
+    s.points[3].x() = 1e12;
+    EXPECT_NO_THROW(closedSurfaceCheck::checkCoordinateRange(s, "body.stl"));
+}

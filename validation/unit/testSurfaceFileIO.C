@@ -7,6 +7,7 @@
 #include "testHelpers.H"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 using namespace immersedDEM;
@@ -308,4 +309,18 @@ TEST(surfaceFileIO, mergeCoincidentPoints)
     EXPECT_EQ(s.faces[1], (triFace{1, 3, 2}));
     EXPECT_EQ(s.faces[2], (triFace{0, 1, 2}));      // -0 is 0
     EXPECT_EQ(s.points[3], vec3(1, 1, 0));
+}
+
+
+// Issue 17: a directory given as the file was "neither ASCII nor binary STL"
+TEST(surfaceFileIO, directoryIsNotAFile)
+{
+    const std::string dir = tmpFile("folder.stl");
+    std::filesystem::create_directories(dir);
+    EXPECT_TRUE(throwsCoreError([&]{ surfaceFileIO::read(dir); }, {dir, "is a directory, not a file"}));
+    EXPECT_TRUE(throwsCoreError([&]{ surfaceFileIO::read(dir + "/"); }, {"is a directory"}));
+    // Without an extension: the directory, not the extension, is named
+    const std::string plain = tmpFile("folder");
+    std::filesystem::create_directories(plain);
+    EXPECT_TRUE(throwsCoreError([&]{ surfaceFileIO::read(plain); }, {"is a directory, not a file"}));
 }

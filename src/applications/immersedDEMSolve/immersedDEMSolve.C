@@ -33,6 +33,7 @@ Usage
 #include "coreError.H"
 
 #include <algorithm>
+#include <cmath>
 
 using namespace Foam;
 
@@ -46,6 +47,32 @@ int main(int argc, char *argv[])
 
     #include "setRootCase.H"
     #include "createTime.H"
+
+    // The time loop must end: a step that is not positive, or so small
+    // that the run would not get anywhere, is an error
+    {
+        const scalar dt = runTime.deltaTValue();
+        const scalar span = runTime.endTime().value() - runTime.startTime().value();
+        if (!(dt > 0) || !std::isfinite(dt))
+        {
+            FatalIOErrorInFunction(runTime.controlDict())
+                << "Keyword 'deltaT' in " << runTime.controlDict().name()
+                << " is " << dt << ": it must be > 0 (the interval of the"
+                << " output rows; the DEM takes its own steps within it)" << nl
+                << exit(FatalIOError);
+        }
+        const scalar maxSteps = 1e9;
+        if (span/dt > maxSteps || runTime.value() + dt == runTime.value())
+        {
+            FatalIOErrorInFunction(runTime.controlDict())
+                << "Keyword 'deltaT' in " << runTime.controlDict().name()
+                << " is " << dt << ": from startTime " << runTime.startTime().value()
+                << " to endTime " << runTime.endTime().value() << " that is "
+                << span/dt << " steps, more than " << maxSteps
+                << " (or too small to change the time at all)" << nl
+                << exit(FatalIOError);
+        }
+    }
 
     const IOdictionary properties
     (
@@ -77,7 +104,11 @@ int main(int argc, char *argv[])
     std::unique_ptr<immersedDEM::demOutput> out;
     try
     {
-        out.reset(new immersedDEM::demOutput(outDir));
+        // A rerun writes bodies_<startTime>.dat next to an earlier run's
+        // bodies.dat (OpenFOAM's writeFile convention), never appends to it
+        out.reset(new immersedDEM::demOutput(outDir, runTime.timeName()));
+        Info<< "Writing " << out->bodiesFile() << " and "
+            << out->contactsFile() << endl;
         dem->computeContacts();
         out->writeBodies(runTime.value(), *dem);
         out->writeContacts(runTime.value(), *dem);
@@ -86,6 +117,16 @@ int main(int argc, char *argv[])
     catch (const immersedDEM::coreError& err)
     {
         FatalErrorInFunction << err.what() << exit(FatalError);
+    }
+
+    // Sub-steps of one output interval: within the DEM's counter
+    if (runTime.deltaTValue()/dem->timeStep() > 1e9)
+    {
+        FatalIOErrorInFunction(runTime.controlDict())
+            << "Keyword 'deltaT' in " << runTime.controlDict().name() << " is "
+            << runTime.deltaTValue() << " s: with the DEM step " << dem->timeStep()
+            << " s that is more than 1e9 DEM steps per output interval;"
+            << " reduce deltaT" << nl << exit(FatalIOError);
     }
 
     Info<< "\nStarting time loop\n" << endl;

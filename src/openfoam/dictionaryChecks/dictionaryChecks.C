@@ -1,5 +1,151 @@
 #include "dictionaryChecks.H"
 #include "IOstreams.H"
+#include "IFstream.H"
+#include "OSspecific.H"
+
+namespace
+{
+
+using namespace Foam;
+
+// Skips the rest of a statement whose first token after the keyword was
+// already read as t: up to the ';' outside brackets, or over a block
+void skipStatement(Istream& is, token t)
+{
+    label depth = 0;
+    while (t.good())
+    {
+        if (t.isPunctuation())
+        {
+            const token::punctuationToken p = t.pToken();
+            if (p == token::BEGIN_LIST || p == token::BEGIN_BLOCK || p == token::BEGIN_SQR)
+            {
+                ++depth;
+            }
+            else if (p == token::END_LIST || p == token::END_BLOCK || p == token::END_SQR)
+            {
+                if (--depth < 0) { is.putBack(t); return; }
+            }
+            else if (p == token::END_STATEMENT && depth == 0)
+            {
+                return;
+            }
+        }
+        is.read(t);
+    }
+}
+
+
+void scanScope
+(
+    Istream& is,
+    const fileName& file,
+    const std::string& scope,
+    const std::map<std::string, std::string>& what,
+    std::map<std::string, label>& lines
+)
+{
+    std::map<std::string, label> seen;
+    token t;
+    while (true)
+    {
+        is.read(t);
+        if (!t.good())
+        {
+            return;
+        }
+        if (t.isPunctuation())
+        {
+            if (t.pToken() == token::END_BLOCK) return;
+            continue;
+        }
+        std::string key;
+        if (t.isWord())
+        {
+            key = t.wordToken();
+        }
+        else if (t.isString() && !t.isVariable())
+        {
+            key = t.stringToken();
+        }
+        else
+        {
+            // $variable expansions and stray values
+            token next(is);
+            skipStatement(is, next);
+            continue;
+        }
+        const label line = t.lineNumber();
+        if (key.size() && key[0] == '#')
+        {
+            // A directive (#include "file", #inputMode merge, #remove (a b)):
+            // one argument
+            token arg(is);
+            if (arg.isPunctuation() && arg.pToken() == token::BEGIN_LIST)
+            {
+                skipStatement(is, arg);
+            }
+            continue;
+        }
+        const auto it = seen.find(key);
+        if (it != seen.end())
+        {
+            const auto names = what.find(scope);
+            const std::string where = scope.empty() ? "the top level" : "'" + scope + "'";
+            std::string text;
+            if (names != what.end())
+            {
+                text = "Two " + names->second + " named '" + key + "' in " + where;
+            }
+            else
+            {
+                text = "Keyword '" + key + "' appears twice in " + where;
+            }
+            FatalIOErrorInFunction(is)
+                << text.c_str() << " of " << file << ": lines " << it->second
+                << " and " << line << nl
+                << "OpenFOAM would merge the two or keep the last silently:"
+                << " give each " << (names != what.end() ? "a unique name" : "keyword once")
+                << nl << exit(FatalIOError);
+        }
+        seen.emplace(key, line);
+        const std::string path = scope.empty() ? key : scope + "/" + key;
+        lines.emplace(path, line);
+        token next(is);
+        if (next.isPunctuation() && next.pToken() == token::BEGIN_BLOCK)
+        {
+            scanScope(is, file, path, what, lines);
+        }
+        else
+        {
+            skipStatement(is, next);
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+std::map<std::string, Foam::label> Foam::immersedDEMChecks::noDuplicateKeywords
+(
+    const fileName& file,
+    const std::map<std::string, std::string>& what
+)
+{
+    std::map<std::string, label> lines;
+    if (!isFile(file))
+    {
+        return lines;
+    }
+    IFstream is(file);
+    if (!is.good())
+    {
+        return lines;
+    }
+    scanScope(is, file, "", what, lines);
+    return lines;
+}
+
 
 void Foam::immersedDEMChecks::allowOnly(const dictionary& dict, const wordList& allowed)
 {

@@ -417,7 +417,19 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     const polyMesh* mesh
 )
 {
-    immersedDEMChecks::allowOnly(dict, {"materials", "contact", "time", "bodies", "walls"});
+    // Before the dictionary's own reading merged them away: two bodies of
+    // one name, a keyword given twice
+    const std::map<std::string, label> lines = immersedDEMChecks::noDuplicateKeywords
+    (
+        dict.name(),
+        {{"bodies", "bodies"}, {"materials", "materials"}, {"walls", "walls"}}
+    );
+    immersedDEMChecks::allowOnly
+    (
+        dict, {"materials", "contact", "time", "bodies", "walls", "restart"}
+    );
+    // restart (yes/no) is used by immersedDEMState: checked here
+    (void)dict.getOrDefault<bool>("restart", true);
 
     const std::vector<contactMaterial> materials = readMaterials(dict.subDict("materials"));
     demSettings settings = readSettings(dict);
@@ -436,6 +448,11 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
 
     const dictionary& bodies = dict.subDict("bodies");
     double largest = 0;
+    auto lineOf = [&lines](const std::string& path)
+    {
+        const auto it = lines.find(path);
+        return it == lines.end() ? label(-1) : it->second;
+    };
     for (const entry& e : bodies)
     {
         const dictionary& d = immersedDEMChecks::subDictEntry(bodies, e, "a body's description");
@@ -457,6 +474,18 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
         for (const entry& e : *walls)
         {
             const dictionary& d = immersedDEMChecks::subDictEntry(*walls, e, "a wall's description");
+            if (bodies.found(e.keyword(), keyType::LITERAL))
+            {
+                // Contacts, outputs and the restart state name bodies and
+                // walls alike
+                FatalIOErrorInFunction(d)
+                    << "Wall '" << e.keyword() << "' (line "
+                    << lineOf("walls/" + e.keyword()) << ") has the name of body '"
+                    << e.keyword() << "' (line " << lineOf("bodies/" + e.keyword())
+                    << ") in " << dict.name()
+                    << ": bodies and walls need distinct names" << nl
+                    << exit(FatalIOError);
+            }
             dem->addBody
             (
                 readWall(e.keyword(), d, surfaceDir, materials, std::max(largest, SMALL), mesh),

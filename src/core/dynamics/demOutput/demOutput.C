@@ -14,21 +14,34 @@ namespace fs = std::filesystem;
 namespace
 {
 
-void openTable(std::ofstream& os, const std::string& file, const std::string& header)
+// Opens dir/name.dat, or dir/name_<startTime>.dat when the first exists
+// (an earlier run's: OpenFOAM's writeFile convention), truncated, with the
+// header line
+std::string openTable
+(
+    std::ofstream& os,
+    const std::string& dir,
+    const std::string& name,
+    const std::string& startTimeName,
+    const std::string& header
+)
 {
-    const bool fresh = !fs::exists(file) || fs::file_size(file) == 0;
-    os.open(file, std::ios::app);
+    std::string file = dir + "/" + name + ".dat";
+    if (fs::exists(file))
+    {
+        file = dir + "/" + name + "_" + startTimeName + ".dat";
+    }
+    os.open(file, std::ios::trunc);
     if (!os.good())
     {
         throw coreError("Cannot open \"" + file + "\" for writing");
     }
     os.precision(10);
-    if (fresh)
-    {
-        os << header << '\n';
-        os.flush();
-    }
+    os << header << '\n';
+    os.flush();
+    return file;
 }
+
 
 void writeAtomically(const std::string& file, const std::string& text)
 {
@@ -68,7 +81,7 @@ const std::vector<std::string>& demOutput::bodyColumns()
 }
 
 
-demOutput::demOutput(const std::string& dir)
+demOutput::demOutput(const std::string& dir, const std::string& startTimeName)
 :
     dir_(dir)
 {
@@ -80,10 +93,10 @@ demOutput::demOutput(const std::string& dir)
     }
     std::string header = "#";
     for (const std::string& c : bodyColumns()) header += " " + c;
-    openTable(bodies_, dir_ + "/bodies.dat", header);
-    openTable
+    bodiesFile_ = openTable(bodies_, dir_, "bodies", startTimeName, header);
+    contactsFile_ = openTable
     (
-        contacts_, dir_ + "/contacts.dat",
+        contacts_, dir_, "contacts", startTimeName,
         "# time bodyA bodyB volume Fn nx ny nz px py pz Ftx Fty Ftz"
     );
 }
@@ -168,22 +181,19 @@ void demOutput::writeVTK(double time, const demSolver& dem)
     const std::string name = "bodies_" + timeName(time) + ".vtk";
     writeAtomically(vtkDir + "/" + name, os.str());
 
-    // The series lists every file present (it survives restarts)
-    std::vector<std::pair<double, std::string>> files;
-    for (const auto& e : fs::directory_iterator(vtkDir))
+    // The series lists the files this run wrote (a rerun over an older
+    // run's folder does not mix the two)
+    const auto it = std::find_if
+    (
+        vtkFiles_.begin(), vtkFiles_.end(),
+        [&](const std::pair<double, std::string>& f){ return f.second == name; }
+    );
+    if (it == vtkFiles_.end())
     {
-        const std::string f = e.path().filename().string();
-        if (f.rfind("bodies_", 0) == 0 && f.size() > 11 && f.substr(f.size() - 4) == ".vtk")
-        {
-            try
-            {
-                files.emplace_back(std::stod(f.substr(7, f.size() - 11)), f);
-            }
-            catch (...)
-            {}
-        }
+        vtkFiles_.emplace_back(time, name);
+        std::sort(vtkFiles_.begin(), vtkFiles_.end());
     }
-    std::sort(files.begin(), files.end());
+    const auto& files = vtkFiles_;
     std::ostringstream ss;
     ss.precision(12);
     ss << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <numeric>
 #include <queue>
+#include <cmath>
+#include <sstream>
 #include <unordered_map>
 
 namespace immersedDEM
@@ -55,6 +57,117 @@ struct pairCounter
 } // End anonymous namespace
 
 
+void closedSurfaceCheck::checkCoordinateRange
+(
+    const triangleSoup& soup,
+    const std::string& name
+)
+{
+    for (size_t i = 0; i < soup.points.size(); ++i)
+    {
+        const vec3& p = soup.points[i];
+        if (!(p.cwiseAbs().maxCoeff() <= maxCoordinate))
+        {
+            std::ostringstream os;
+            os.precision(6);
+            os  << "Surface \"" << name << "\": vertex " << i << " (" << p.x() << ' '
+                << p.y() << ' ' << p.z() << ") has a coordinate out of range:"
+                << " magnitudes above " << maxCoordinate << " m (after scale)"
+                << " are not accepted";
+            throw coreError(os.str());
+        }
+    }
+}
+
+
+std::vector<int> closedSurfaceCheck::enclosingShells
+(
+    const triangleSoup& soup,
+    const std::vector<int>& shell,
+    int nShells
+)
+{
+    std::vector<int> inside(nShells, -1);
+    if (nShells < 2)
+    {
+        return inside;
+    }
+    // Each shell's box, faces and corners
+    std::vector<vec3> lo(nShells, vec3::Constant(HUGE_VAL));
+    std::vector<vec3> hi(nShells, vec3::Constant(-HUGE_VAL));
+    std::vector<std::vector<int>> facesOf(nShells), cornersOf(nShells);
+    std::vector<int> shellOfPoint(soup.points.size(), -1);
+    for (size_t fi = 0; fi < soup.faces.size(); ++fi)
+    {
+        const int s = shell[fi];
+        facesOf[s].push_back(int(fi));
+        for (int v : soup.faces[fi])
+        {
+            lo[s] = lo[s].cwiseMin(soup.points[v]);
+            hi[s] = hi[s].cwiseMax(soup.points[v]);
+            if (shellOfPoint[v] < 0)
+            {
+                shellOfPoint[v] = s;
+                cornersOf[s].push_back(v);
+            }
+        }
+    }
+
+    // Winding number of shell t at p: the sum of the solid angles of its
+    // triangles (van Oosterom and Strackee, IEEE Trans. Biomed. Eng. 30,
+    // 1983) over 4 pi; +-1 inside a closed shell, 0 outside
+    const double fourPi = 4*std::acos(-1.0);
+    auto winding = [&](int t, const vec3& p)
+    {
+        double omega = 0;
+        for (int fi : facesOf[t])
+        {
+            const triFace& f = soup.faces[fi];
+            const vec3 a = soup.points[f[0]] - p;
+            const vec3 b = soup.points[f[1]] - p;
+            const vec3 c = soup.points[f[2]] - p;
+            const double la = a.norm(), lb = b.norm(), lc = c.norm();
+            const double num = a.dot(b.cross(c));
+            const double den = la*lb*lc + a.dot(b)*lc + a.dot(c)*lb + b.dot(c)*la;
+            omega += 2*std::atan2(num, den);
+        }
+        return omega/fourPi;
+    };
+
+    // Shell s is inside shell t when its box is inside t's and its corners
+    // (up to 8, spread over the shell) are: shells that cross each other
+    // (some corners in, some out) are left to the self-intersection check
+    const size_t nSamples = 8;
+    for (int s = 0; s < nShells; ++s)
+    {
+        const std::vector<int>& corners = cornersOf[s];
+        for (int t = 0; t < nShells && inside[s] < 0; ++t)
+        {
+            if
+            (
+                t == s
+             || (lo[s].array() < lo[t].array()).any()
+             || (hi[s].array() > hi[t].array()).any()
+            )
+            {
+                continue;
+            }
+            const size_t n = std::min(nSamples, corners.size());
+            bool all = true;
+            for (size_t k = 0; k < n && all; ++k)
+            {
+                all = std::abs(winding(t, soup.points[corners[k*corners.size()/n]])) > 0.5;
+            }
+            if (all)
+            {
+                inside[s] = t;
+            }
+        }
+    }
+    return inside;
+}
+
+
 long closedSurfaceCheck::countSelfIntersections(const triangleSoup& soup, long maxPairs)
 {
     const floatingPointGuard noTraps;
@@ -96,6 +209,7 @@ std::vector<std::string> closedSurfaceCheck::checkAndRepair
 {
     std::vector<std::string> warnings;
     const std::string where = "Surface \"" + name + "\"";
+    checkCoordinateRange(soup, name);
 
     // Triangles with a repeated corner (after merging) have no area
     {
@@ -261,6 +375,32 @@ std::vector<std::string> closedSurfaceCheck::checkAndRepair
             where + ": inconsistent triangle orientation repaired ("
           + std::to_string(std::min<long>(nFlipped, nFaces - nFlipped)) + " triangles turned)"
         );
+    }
+
+    // Nested shells: a cavity (or a body inside a body) is not supported
+    {
+        const std::vector<int> inside = enclosingShells(soup, shell, nShells);
+        int nNested = 0, first = -1;
+        for (int s = 0; s < nShells; ++s)
+        {
+            if (inside[s] >= 0)
+            {
+                ++nNested;
+                if (first < 0) first = s;
+            }
+        }
+        if (nNested)
+        {
+            throw coreError
+            (
+                where + " has nested shells: " + std::to_string(nShells)
+              + " closed shells, " + std::to_string(nNested) + " of them inside"
+                " another (shell " + std::to_string(first) + " inside shell "
+              + std::to_string(inside[first]) + "). A cavity is not supported:"
+                " remove the inner shells (a hollow body) or give them as"
+                " separate bodies"
+            );
+        }
     }
 
     // Each shell outwards

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -28,8 +29,21 @@ std::string lowerExtension(const std::string& fileName)
     return ext;
 }
 
+void notADirectory(const std::string& fileName)
+{
+    std::error_code ec;
+    if (std::filesystem::is_directory(fileName, ec))
+    {
+        throw coreError
+        (
+            "Surface file \"" + fileName + "\" is a directory, not a file"
+        );
+    }
+}
+
 std::ifstream openForReading(const std::string& fileName, std::ios::openmode mode)
 {
+    notADirectory(fileName);
     std::ifstream is(fileName, mode);
     if (!is.good())
     {
@@ -321,6 +335,7 @@ triangleSoup surfaceFileIO::readOBJ(const std::string& fileName)
 
 triangleSoup surfaceFileIO::read(const std::string& fileName)
 {
+    notADirectory(fileName);
     const std::string ext = lowerExtension(fileName);
     if (ext == "stl")
     {

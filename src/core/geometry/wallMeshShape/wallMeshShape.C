@@ -2,6 +2,7 @@
 
 #include <map>
 #include "coreError.H"
+#include "closedSurfaceCheck.H"
 
 #include <limits>
 
@@ -17,6 +18,7 @@ const triangleSoup& nonEmpty(const triangleSoup& s, const std::string& name)
     {
         throw coreError("Wall surface \"" + name + "\" has no triangles");
     }
+    closedSurfaceCheck::checkCoordinateRange(s, name);
     return s;
 }
 

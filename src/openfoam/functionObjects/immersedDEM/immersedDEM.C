@@ -15,6 +15,117 @@ namespace functionObjects
 }
 }
 
+const Foam::word Foam::functionObjects::immersedDEM::registrationName
+(
+    "immersedDEM:functionObject"
+);
+
+
+void Foam::functionObjects::immersedDEM::registerInRegion(const dictionary& dict)
+{
+    if (const IOdictionary* other = mesh_.findObject<IOdictionary>(registrationName))
+    {
+        // Both would advance the same bodies: twice the DEM per CFD step
+        FatalIOErrorInFunction(dict)
+            << "Function objects '" << other->get<word>("name") << "' and '"
+            << name() << "' in " << time_.controlDict().name()
+            << " are both of type immersedDEM for region " << mesh_.name()
+            << ": each would advance the same bodies. Keep one" << nl
+            << exit(FatalIOError);
+    }
+    registration_.reset
+    (
+        new IOdictionary
+        (
+            IOobject
+            (
+                registrationName, time_.constant(), mesh_,
+                IOobject::NO_READ, IOobject::NO_WRITE, true
+            )
+        )
+    );
+    registration_->add("name", name());
+}
+
+
+void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
+{
+    const auto& bodies = state_.dem().bodies();
+    const label n = bodies.size();
+    if (outside_.size() != n)
+    {
+        outside_.setSize(n, false);
+        reportedCourant_.setSize(n, 1);
+    }
+    const boundBox& meshBox = mesh_.bounds();
+    const scalarField& V = mesh_.V();
+
+    // Each body's centre and the size of the cell there (GREAT: outside
+    // the mesh or a wall), one reduction for all bodies
+    List<vector> centre(n, Zero);
+    List<scalar> h(n, GREAT);
+    for (label i = 0; i < n; ++i)
+    {
+        const ::immersedDEM::vec3& p = bodies[i].pose.position();
+        centre[i] = vector(p.x(), p.y(), p.z());
+        if (!state_.dem().isWall(i) && deltaT > 0)
+        {
+            const label celli = mesh_.findCell(centre[i]);
+            if (celli >= 0)
+            {
+                h[i] = cbrt(V[celli]);
+            }
+        }
+    }
+    Pstream::listCombineGather(h, minEqOp<scalar>());
+    Pstream::listCombineScatter(h);
+
+    for (label i = 0; i < n; ++i)
+    {
+        const ::immersedDEM::rigidBody& b = bodies[i];
+        if (state_.dem().isWall(i))
+        {
+            continue;
+        }
+        const vector& x = centre[i];
+        const scalar r = b.geometry->boundingRadius();
+
+        // Outside: the body's box misses the mesh's
+        const boundBox bodyBox(x - vector(r, r, r), x + vector(r, r, r));
+        const bool out = !meshBox.overlaps(bodyBox);
+        if (out && !outside_[i])
+        {
+            WarningInFunction
+                << "Function object " << name() << ": body '" << b.name.c_str()
+                << "' left the mesh at time " << time_.timeName()
+                << " (centre " << x << ", mesh bounds " << meshBox
+                << "): the fluid no longer sees it; it continues in the DEM"
+                << endl;
+        }
+        outside_[i] = out;
+        if (out || h[i] >= GREAT)
+        {
+            continue;
+        }
+
+        // Body Courant number against the cell at its centre
+        const scalar speed = b.velocity.norm() + b.angularVelocity.norm()*r;
+        const scalar Co = speed*deltaT/h[i];
+        if (Co > reportedCourant_[i])
+        {
+            WarningInFunction
+                << "Function object " << name() << ", time " << time_.timeName()
+                << ": body '" << b.name.c_str() << "' moves more than a cell per"
+                << " CFD step: speed " << speed << " m/s (|v| + |omega| r),"
+                << " cell size " << h[i] << " m at its centre, CFD step "
+                << deltaT << " s: body Courant number " << Co
+                << ". The fluid cannot follow; reduce deltaT (or use"
+                << " adjustTimeStep with a smaller maxCo)" << endl;
+            reportedCourant_[i] = 2*Co;
+        }
+    }
+}
+
 
 Foam::functionObjects::immersedDEM::immersedDEM
 (
@@ -30,14 +141,18 @@ Foam::functionObjects::immersedDEM::immersedDEM
     UName_("U")
 {
     read(dict);
+    registerInRegion(dict);
     if (Pstream::master())
     {
+        const word startTimeName = time_.timeName(time_.startTime().value());
         const fileName dir =
-            time_.globalPath()/"postProcessing"/name
-           /time_.timeName(time_.startTime().value());
+            time_.globalPath()/"postProcessing"/name/startTimeName;
         try
         {
-            output_.reset(new ::immersedDEM::demOutput(dir));
+            output_.reset(new ::immersedDEM::demOutput(dir, startTimeName));
+            Info<< type() << ' ' << name << ": writing "
+                << output_->bodiesFile().c_str() << " and "
+                << output_->contactsFile().c_str() << endl;
             output_->writeBodies(time_.value(), state_.dem());
             output_->writeVTK(time_.value(), state_.dem());
         }
@@ -48,6 +163,7 @@ Foam::functionObjects::immersedDEM::immersedDEM
                 << exit(FatalError);
         }
     }
+    checkBodies(time_.deltaTValue());
 }
 
 
@@ -148,6 +264,7 @@ bool Foam::functionObjects::immersedDEM::execute()
     const scalar demSeconds = demTimer.elapsedTime();
 
     state_.project();
+    checkBodies(deltaT);
 
     scalar largest = 0;
     for (const auto& c : state_.dem().contacts())

@@ -1,5 +1,6 @@
 #include "immersedBoundaryForce.H"
 #include "immersedDEMState.H"
+#include "immersedDEM.H"
 #include "dictionaryChecks.H"
 #include "fvMatrices.H"
 #include "fvmSup.H"
@@ -118,6 +119,29 @@ Foam::scalar Foam::fv::immersedBoundaryForce::viscosity
 }
 
 
+void Foam::fv::immersedBoundaryForce::requireFunctionObject()
+{
+    if (functionObjectFound_)
+    {
+        return;
+    }
+    // The solver's time loop constructed the function objects before the
+    // first step's momentum equation
+    if (!mesh_.foundObject<IOdictionary>(functionObjects::immersedDEM::registrationName))
+    {
+        FatalErrorInFunction
+            << "fvOption '" << name_ << "' (" << typeName << ") forces the fluid"
+            << " with the bodies of constant/immersedDEMProperties, but no"
+            << " function object of type immersedDEM runs for region "
+            << mesh_.name() << ": the bodies would never move and nothing"
+            << " would be written. Add one to the functions of "
+            << mesh_.time().controlDict().name() << nl
+            << exit(FatalError);
+    }
+    functionObjectFound_ = true;
+}
+
+
 Foam::tmp<Foam::volScalarField::Internal>
 Foam::fv::immersedBoundaryForce::penaltyCoefficient() const
 {
@@ -141,6 +165,7 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
+    requireFunctionObject();
     state_.projectIfMeshChanged();
     state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
@@ -157,6 +182,7 @@ void Foam::fv::immersedBoundaryForce::addSup
     const label fieldi
 )
 {
+    requireFunctionObject();
     state_.projectIfMeshChanged();
     state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
