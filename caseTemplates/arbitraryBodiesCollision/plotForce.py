@@ -3,6 +3,8 @@
 postProcessing/bodies/0/contacts.dat (summed over the contact regions at each
 DEM sub-step), written to postProcessing/bodies/0/contactForce.png."""
 import os, sys
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "python"))
+from immersedDEMData import readTable
 
 import matplotlib
 matplotlib.use("Agg")
@@ -10,12 +12,10 @@ import matplotlib.pyplot as plt
 
 here = os.path.dirname(os.path.abspath(__file__))
 folder = os.path.join(here, "postProcessing", "bodies", "0")
+contacts = readTable(os.path.join(folder, "contacts.dat"))
 force = {}
-for line in open(os.path.join(folder, "contacts.dat")):
-    if line.startswith("#"):
-        continue
-    r = line.split()
-    force[float(r[0])] = force.get(float(r[0]), 0.0) + float(r[4])
+for time, Fn in zip(contacts["time"], contacts["Fn"]):
+    force[time] = force.get(time, 0.0) + Fn
 if not force:
     sys.exit("no contact in " + os.path.join(folder, "contacts.dat"))
 t = sorted(force)

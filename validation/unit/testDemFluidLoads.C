@@ -35,8 +35,8 @@ TEST(demFluidLoads, newFluidForceActsFromTheNextAdvance)
     dem.advance(1e-2);                      // forces computed, no fluid force
     rigidBody& b = dem.bodies()[0];
     const double m = b.mass();
-    b.fluidForce = vec3(0, 0, 2e-3);
-    b.fluidTorque = vec3(1e-7, 0, 0);
+    b.fluid.force = vec3(0, 0, 2e-3);
+    b.fluid.torque = vec3(1e-7, 0, 0);
     dem.advance(1e-2);
     // Constant force over the whole interval: v = F T/m exactly
     EXPECT_NEAR(b.velocity.z(), 2e-3*1e-2/m, 1e-12);
@@ -53,8 +53,8 @@ TEST(demFluidLoads, addedMassDampingRelaxesTowardsTheReference)
     const double m = b.mass();
     const double c = 0.5*m/1e-3;            // m_a = m/2 over a CFD step of 1 ms
     b.velocity = vec3(0.2, 0, 0);
-    b.fluidReferenceVelocity = vec3(0.1, 0, 0);
-    b.fluidDamping = c;
+    b.fluid.referenceVelocity = vec3(0.1, 0, 0);
+    b.fluid.damping = c;
     const double T = 2e-3;
     dem.advance(T);
     const double expected = 0.1 + 0.1*std::exp(-c*T/m);
@@ -71,12 +71,12 @@ TEST(demFluidLoads, addedMassDampingLeavesTheReferenceMotionAlone)
     // A constant fluid force F and a reference moving with acceleration
     // F/m: the body follows it exactly, the damping never acts
     const vec3 F(0, 0, 3e-3);
-    b.fluidForce = F;
+    b.fluid.force = F;
     b.velocity = vec3(0, 0, 0.05);
-    b.fluidReferenceVelocity = b.velocity;
-    b.fluidReferenceAcceleration = F/m;
-    b.fluidReferenceTime = dem.time();
-    b.fluidDamping = 10*m/1e-3;
+    b.fluid.referenceVelocity = b.velocity;
+    b.fluid.referenceAcceleration = F/m;
+    b.fluid.referenceTime = dem.time();
+    b.fluid.damping = 10*m/1e-3;
     dem.advance(1e-3);
     EXPECT_NEAR(b.velocity.z(), 0.05 + F.z()/m*1e-3, 1e-12);
     EXPECT_NEAR((b.appliedFluidForce(dem.time()) - F).norm(), 0, 1e-12);
@@ -91,8 +91,8 @@ TEST(demFluidLoads, angularDampingRelaxesTheSpinTowardsTheReference)
     const double I = b.inertia().x();       // a sphere: isotropic
     const double D = 0.8*I/1e-3;
     b.angularVelocity = vec3(0, 3, 0);
-    b.fluidReferenceAngularVelocity = vec3(0, 1, 0);
-    b.fluidAngularDamping = D;
+    b.fluid.referenceAngularVelocity = vec3(0, 1, 0);
+    b.fluid.angularDamping = D;
     const double T = 2e-3;
     dem.advance(T);
     const double expected = 1 + 2*std::exp(-D*T/I);

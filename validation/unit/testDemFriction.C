@@ -240,7 +240,7 @@ void checkRolling(const std::string& law)
 } // End anonymous namespace
 
 
-TEST(DemFriction, boxSticksBelowAngleOfRepose)
+TEST(demFriction, boxSticksBelowAngleOfRepose)
 {
     const double theta = deg(20), mu = 0.5;
     ASSERT_LT(std::tan(theta), mu);
@@ -266,7 +266,7 @@ TEST(DemFriction, boxSticksBelowAngleOfRepose)
 }
 
 
-TEST(DemFriction, boxSlidesAboveAngleOfRepose)
+TEST(demFriction, boxSlidesAboveAngleOfRepose)
 {
     const double theta = deg(35), mu = 0.5;
     ASSERT_GT(std::tan(theta), mu);
@@ -287,7 +287,7 @@ TEST(DemFriction, boxSlidesAboveAngleOfRepose)
 }
 
 
-TEST(DemFriction, frictionlessBoxSlides)
+TEST(demFriction, frictionlessBoxSlides)
 {
     const double theta = deg(20);
     auto dem = boxOnIncline(theta, 0);
@@ -304,7 +304,7 @@ TEST(DemFriction, frictionlessBoxSlides)
 }
 
 
-TEST(DemFriction, frictionlessSphereSlidesWithoutRolling)
+TEST(demFriction, frictionlessSphereSlidesWithoutRolling)
 {
     const double theta = deg(30);
     auto dem = sphereOnIncline(theta, 0, "volume");
@@ -319,13 +319,13 @@ TEST(DemFriction, frictionlessSphereSlidesWithoutRolling)
 }
 
 
-TEST(DemFriction, sphereRollsDownInclineVolumeLaw)
+TEST(demFriction, sphereRollsDownInclineVolumeLaw)
 {
     checkRolling("volume");
 }
 
 
-TEST(DemFriction, sphereRollsDownInclineHertzMindlin)
+TEST(demFriction, sphereRollsDownInclineHertzMindlin)
 {
     checkRolling("hertzMindlin");
 }

@@ -35,7 +35,7 @@ double angleDeg(const vec3& a, const vec3& b)
 }
 
 // Two spheres overlapping by a fraction of the diameter along a skew line
-// (as in testOverlap.C)
+// (as in testVirtualMeshOverlap.C)
 struct spherePair
 {
     vec3 c2, c1;    // c1 is made from c2
@@ -200,7 +200,7 @@ TEST(uniformCellsOverlap, uniformBoxIntoBox)
 
 TEST(uniformCellsOverlap, uniformTwoProngsGiveTwoRegions)
 {
-    // A U-shaped block whose two prongs dip into a slab (as in testOverlap.C)
+    // A U-shaped block whose two prongs dip into a slab (as in testVirtualMeshOverlap.C)
     const std::vector<Eigen::Vector2d> U
     {
         {0, 0}, {0.012, 0}, {0.012, 0.008}, {0.009, 0.008}, {0.009, 0.003},

@@ -18,8 +18,9 @@ Usage
     <body> is an STL/OBJ file or sphere:<radius>. A pose is applied to the
     file's coordinates as x' = R x + t: translation t, then the rotation axis
     and angle [rad] of R (for a sphere, t is the centre). Defaults: no
-    rotation or translation, method virtualMesh, level 4, h = 1/20 of the
-    smaller body's diameter (2 x bounding radius). -repeat N times N
+    rotation or translation, method virtualMesh, and the solver's defaults
+    (overlapSettings in contactGeometry.H): level 4, h = 1/20 of the smaller
+    body's volume-equivalent diameter. -repeat N times N
     evaluations and reports the median.
     Bad input: a message on stderr and exit code 1.
 \*---------------------------------------------------------------------------*/
@@ -83,7 +84,7 @@ int main(int argc, char* argv[])
     std::string specA, specB, method = "virtualMesh";
     double poseA[7] = {0, 0, 0, 0, 0, 1, 0}, poseB[7] = {0, 0, 0, 0, 0, 1, 0};
     double h = -1;
-    int level = 4, repeat = 1;
+    int level = overlapSettings::defaultLevel, repeat = 1;
 
     for (int i = 1; i < argc; ++i)
     {
@@ -114,7 +115,10 @@ int main(int argc, char* argv[])
         {
             need(1);
             level = int(number(argv[++i], a));
-            if (level < 0 || level > 10) usage("-level must be in [0, 10]");
+            if (level < 0 || level > overlapSettings::maxLevel)
+            {
+                usage("-level must be in [0, " + std::to_string(overlapSettings::maxLevel) + "]");
+            }
         }
         else if (a == "-repeat")
         {
@@ -142,7 +146,9 @@ int main(int argc, char* argv[])
         const bodyPose pA = place(*A, poseA), pB = place(*B, poseB);
         if (h < 0)
         {
-            h = 2*std::min(A->boundingRadius(), B->boundingRadius())/20;
+            // The solver's default: from the smaller volume-equivalent diameter
+            const double d = std::cbrt(6/M_PI*std::min(A->volume(), B->volume()));
+            h = overlapSettings::defaultCellSize(d);
         }
         const overlapSettings settings{h, level};
 

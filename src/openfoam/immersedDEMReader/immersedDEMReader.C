@@ -96,7 +96,13 @@ demSettings readSettings(const dictionary& top)
         wordList methods;
         for (const std::string& m : overlapEngine::types()) methods.append(word(m));
         s.overlapMethod = immersedDEMChecks::oneOfOrDefault(*c, "method", methods, "virtualMesh");
-        s.overlap.level = label(immersedDEMChecks::inRangeOrDefault(*c, "level", 0, 8, 4));
+        s.overlap.level = label
+        (
+            immersedDEMChecks::inRangeOrDefault
+            (
+                *c, "level", 0, overlapSettings::maxLevel, overlapSettings::defaultLevel
+            )
+        );
         s.overlap.h = immersedDEMChecks::positiveOrDefault(*c, "cellSize", 0);
         wordList laws;
         for (const std::string& l : contactLaw::types()) laws.append(word(l));

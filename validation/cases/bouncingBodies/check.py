@@ -3,6 +3,8 @@ import json
 import math
 import os
 import sys
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMData import readTable
 
 out = sys.argv[1]
 fails = []
@@ -15,15 +17,14 @@ def check(what, ok, detail=""):
 
 
 # bodies.dat: header and rows
-with open(os.path.join(out, "bodies.dat")) as f:
-    header = f.readline().split()[1:]
-    rows = [l.split() for l in f if l.strip()]
+table = readTable(os.path.join(out, "bodies.dat"))
+header = table.columns
 need = "time body x y z vx vy vz wx wy wz Fx Fy Fz Fcx Fcy Fcz Ffx Ffy Ffz".split()
 check("bodies.dat has the documented columns", all(c in header for c in need))
 col = {c: i for i, c in enumerate(header)}
-rows = [r for r in rows if len(r) == len(header)]
-num = lambda r, c: float(r[col[c]])
-finite = all(math.isfinite(float(x)) for r in rows for x in r if x not in ("ball", "block"))
+rows = table.rows
+num = lambda r, c: r[col[c]]
+finite = all(math.isfinite(x) for r in rows for x in r if x not in ("ball", "block"))
 check("no NaN or inf in bodies.dat", finite)
 
 ball = [r for r in rows if r[col["body"]] == "ball"]
@@ -58,11 +59,9 @@ check("mean contact force on the resting block balances its weight within 2%",
       abs(mean / (0.0006 * g) - 1) < 0.02, "mean Fcz %.6f N, weight %.6f N" % (mean, 0.0006 * g))
 
 # contacts.dat
-with open(os.path.join(out, "contacts.dat")) as f:
-    chead = f.readline()
-    crow = [l.split() for l in f if l.strip()]
-check("contacts.dat header and rows", chead.startswith("# time bodyA bodyB volume Fn")
-      and len(crow) > 0 and all(r[1] == "floor" for r in crow))
+contacts = readTable(os.path.join(out, "contacts.dat"))
+check("contacts.dat header and rows", contacts.columns[:5] == "time bodyA bodyB volume Fn".split()
+      and len(contacts) > 0 and all(a == "floor" for a in contacts["bodyA"]))
 
 # VTK series: every write time, each file complete
 vtk = os.path.join(out, "VTK")

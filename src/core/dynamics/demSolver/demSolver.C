@@ -33,9 +33,12 @@ demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& 
           + "; it must be at least 10 (30 or more resolves a collision)"
         );
     }
-    if (settings_.overlap.level < 0 || settings_.overlap.level > 10)
+    if (settings_.overlap.level < 0 || settings_.overlap.level > overlapSettings::maxLevel)
     {
-        throw coreError("level must be in [0, 10]");
+        throw coreError
+        (
+            "level must be in [0, " + std::to_string(overlapSettings::maxLevel) + "]"
+        );
     }
 }
 
@@ -271,7 +274,7 @@ void demSolver::computeContacts()
         }
         if (dMin < std::numeric_limits<double>::max())
         {
-            settings_.overlap.h = dMin/20;
+            settings_.overlap.h = overlapSettings::defaultCellSize(dMin);
         }
     }
 
@@ -299,12 +302,12 @@ void demSolver::updateExternalLoads(double t)
     for (rigidBody& b : bodies_)
     {
         // Walls have infinite mass: no weight (and no inf*0 either)
-        b.externalForce = b.fluidForce;
+        b.externalForce = b.fluid.force;
         if (b.dynamic())
         {
             b.externalForce = b.appliedFluidForce(t) + b.mass()*settings_.gravity;
         }
-        b.externalTorque = b.dynamic() ? b.appliedFluidTorque(t) : b.fluidTorque;
+        b.externalTorque = b.dynamic() ? b.appliedFluidTorque(t) : b.fluid.torque;
     }
 }
 

@@ -403,7 +403,7 @@ contactGeometry virtualMeshOverlap::evaluate
     const double h = settings.h;
     const int L = settings.level;
     overlapTools::checkCellSize(type(), h);
-    overlapTools::checkLevel(type(), L, 10);
+    overlapTools::checkLevel(type(), L, overlapSettings::maxLevel);
 
     contactGeometry g;
     const axisAlignedBox box = overlapTools::commonBox(A, pA, B, pB);

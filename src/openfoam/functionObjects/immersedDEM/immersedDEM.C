@@ -196,7 +196,7 @@ bool Foam::functionObjects::immersedDEM::execute()
 {
     const scalar deltaT = time_.deltaTValue();
 
-    if (state_.penalty() > 0)
+    if (state_.projection().forcingRegistered())
     {
         const volVectorField* U = mesh_.findObject<volVectorField>(UName_);
         if (!U)

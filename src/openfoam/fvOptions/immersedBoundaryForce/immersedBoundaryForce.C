@@ -26,8 +26,7 @@ Foam::fv::immersedBoundaryForce::immersedBoundaryForce
 )
 :
     option(name, modelType, dict, mesh),
-    state_(immersedDEMState::New(mesh)),
-    penalty_(1000)
+    state_(immersedDEMState::New(mesh))
 {
     read(dict);
 }
@@ -52,10 +51,14 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
             << exit(FatalIOError);
     }
     applied_.setSize(fieldNames_.size(), false);
-    penalty_ = immersedDEMChecks::positiveOrDefault(dict, "penalty", 1000);
-    state_.setPenalty(penalty_);
+    immersedBoundaryForcingSettings forcing;
+    forcing.penalty =
+        immersedDEMChecks::positiveOrDefault(dict, "penalty", forcing.penalty);
 
-    const word surface(dict.getOrDefault<word>("surface", "sharp"));
+    const word surface
+    (
+        dict.getOrDefault<word>("surface", forcing.sharp ? "sharp" : "diffuse")
+    );
     if (surface != "sharp" && surface != "diffuse")
     {
         FatalIOErrorInFunction(dict)
@@ -63,10 +66,10 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
             << "': it must be sharp or diffuse" << nl
             << exit(FatalIOError);
     }
-    scalar nu = 0;
-    if (surface == "sharp")
+    forcing.sharp = surface == "sharp";
+    if (forcing.sharp)
     {
-        nu = viscosity(dict);
+        forcing.nu = viscosity(dict);
     }
     else if (dict.found("nu"))
     {
@@ -75,7 +78,7 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
             << " is used by the sharp surface only (surface is diffuse)" << nl
             << exit(FatalIOError);
     }
-    state_.setSurface(surface == "sharp", nu);
+    state_.setForcing(forcing);
     return true;
 }
 
@@ -154,7 +157,7 @@ Foam::fv::immersedBoundaryForce::penaltyCoefficient() const
             dimensionedScalar(dimless/dimTime, Zero)
         )
     );
-    tK.ref().field() = state_.forcingCoefficient(mesh_.time().deltaTValue());
+    tK.ref().field() = state_.projection().forcingCoefficient(mesh_.time().deltaTValue());
     return tK;
 }
 
@@ -170,7 +173,7 @@ void Foam::fv::immersedBoundaryForce::addSup
     state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
     const volScalarField::Internal KLambda(penaltyCoefficient());
-    eqn += KLambda*state_.Uib()() - fvm::Sp(KLambda, eqn.psi());
+    eqn += KLambda*state_.projection().Uib()() - fvm::Sp(KLambda, eqn.psi());
     state_.addForcingSeconds(timer.elapsedTime());
 }
 
@@ -187,6 +190,6 @@ void Foam::fv::immersedBoundaryForce::addSup
     state_.setInnerMomentum(eqn.psi());
     const clockTime timer;
     const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
-    eqn += rhoKLambda*state_.Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
+    eqn += rhoKLambda*state_.projection().Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
     state_.addForcingSeconds(timer.elapsedTime());
 }

@@ -18,6 +18,8 @@ dynamic (sphere case); virtualMesh within 2% of dynamic over the contact
 (arbitrary case, the largest difference of the force histories relative
 to the peak)."""
 import os, sys
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMData import readTable
 
 import matplotlib
 matplotlib.use("Agg")
@@ -41,22 +43,22 @@ def available(case, model):
 def table(case, model, name):
     pp = os.path.join(folder(case, model), "postProcessing")
     sub = os.listdir(pp)[0]
-    rows = [l.split() for l in open(os.path.join(pp, sub, "0", name)) if not l.startswith("#")]
-    return rows
+    return readTable(os.path.join(pp, sub, "0", name))
 
 
 def force(case, model):
     """Normal force summed over the contact regions at each DEM time"""
     f = {}
-    for r in table(case, model, "contacts.dat"):
-        f[float(r[0])] = f.get(float(r[0]), 0.0) + float(r[4])
+    c = table(case, model, "contacts.dat")
+    for time, Fn in zip(c["time"], c["Fn"]):
+        f[time] = f.get(time, 0.0) + Fn
     t = np.array(sorted(f))
     return t, np.array([f[x] for x in t])
 
 
 def trajectory(case, model):
-    rows = [r for r in table(case, model, "bodies.dat") if r[1] == "top"]
-    return np.array([float(r[0]) for r in rows]), np.array([[float(x) for x in r[2:5]] for r in rows])
+    top = table(case, model, "bodies.dat").where(body="top")
+    return np.array(top["time"]), np.array([top["x"], top["y"], top["z"]]).T
 
 
 def wall(case, model):
@@ -86,7 +88,7 @@ def plugin(case, model):
 
 def reached(case, model):
     rows = table(case, model, "bodies.dat")
-    return float(rows[-1][0]) if rows else 0.0
+    return rows.last("time") if len(rows) else 0.0
 
 
 def finished(case, model):

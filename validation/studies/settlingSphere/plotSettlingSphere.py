@@ -12,6 +12,8 @@ Writes settlingSphere.png and results.txt next to this script; exits 1 when a
 terminal velocity is off the measured one by more than 3% or a sphere does
 not come to rest on the bottom."""
 import os, re, sys
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMData import readTable
 
 import matplotlib
 matplotlib.use("Agg")
@@ -26,13 +28,8 @@ work, fluids = sys.argv[1], sys.argv[2:]
 
 
 def trajectory(case):
-    t, z, w = [], [], []
-    for line in open(os.path.join(case, "postProcessing/sphere/0/bodies.dat")):
-        if line.startswith("#"):
-            continue
-        r = line.split()
-        t.append(float(r[0])); z.append(float(r[4])); w.append(-float(r[11]))
-    return t, z, w
+    b = readTable(os.path.join(case, "postProcessing/sphere/0/bodies.dat"))
+    return b["time"], b["z"], [-w for w in b["vz"]]
 
 
 R, d = 0.0075, 0.015

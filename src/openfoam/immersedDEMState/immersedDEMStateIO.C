@@ -1,0 +1,185 @@
+// Restart I/O of immersedDEMState: one file per written time,
+// <time>/uniform/immersedDEM/state, an OpenFOAM dictionary with 17
+// significant digits (a continued run is bit-identical to an
+// uninterrupted one)
+
+#include "immersedDEMState.H"
+#include "immersedDEMReader.H"
+#include "OFstream.H"
+#include "IFstream.H"
+#include "OSspecific.H"
+
+using namespace immersedDEM;
+
+
+namespace
+{
+
+Foam::vector v(const vec3& x)
+{
+    return Foam::immersedDEMReader::toFoam(x);
+}
+
+vec3 c(const Foam::vector& x)
+{
+    return Foam::immersedDEMReader::toCore(x);
+}
+
+// fluidLoad::fields visitors: each member under its restart name
+struct fluidLoadWriter
+{
+    Foam::Ostream& os;
+    void operator()(const char* name, const vec3& x) { os.writeEntry(name, v(x)); }
+    void operator()(const char* name, const double x) { os.writeEntry(name, x); }
+};
+
+struct fluidLoadReader
+{
+    const Foam::dictionary& d;
+    void operator()(const char* name, vec3& x) { x = c(d.get<Foam::vector>(name)); }
+    void operator()(const char* name, double& x) { x = d.get<Foam::scalar>(name); }
+};
+
+} // End anonymous namespace
+
+
+Foam::fileName Foam::immersedDEMState::restartFile(const fileName& timePath) const
+{
+    return timePath/"uniform"/"immersedDEM"/"state";
+}
+
+
+void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
+{
+    const fileName file = restartFile(timePath);
+    mkDir(file.path());
+    const fileName tmp = file + ".tmp";
+    {
+        OFstream os(tmp);
+        os.precision(17);
+        os  << "// immersedDEM restart state: body states, fluid momenta inside"
+            << " the bodies and contact histories" << nl << nl;
+        os.writeEntry("time", dem_->time());
+        os  << nl << "bodies" << nl << token::BEGIN_BLOCK << incrIndent << nl;
+        forAll(dem_->bodies(), i)
+        {
+            const rigidBody& b = dem_->bodies()[i];
+            const quat& q = b.pose.orientation();
+            os.beginBlock(word(b.name));
+            os.writeEntry("position", v(b.pose.position()));
+            os.writeEntry("orientation", List<scalar>({q.w(), q.x(), q.y(), q.z()}));
+            os.writeEntry("velocity", v(b.velocity));
+            os.writeEntry("angularVelocity", v(b.angularVelocity));
+            fluidLoad::fields(b.fluid, fluidLoadWriter{os});
+            coupling_->writeBody(os, i);
+            os.endBlock();
+        }
+        os  << decrIndent << token::END_BLOCK << nl << nl;
+        os  << "contacts" << nl << token::BEGIN_BLOCK << incrIndent << nl;
+        label k = 0;
+        for (const auto& pair : dem_->histories())
+        {
+            for (const contactHistory& h : pair.second)
+            {
+                os.beginBlock(word("contact" + Foam::name(k++)));
+                os.writeEntry("bodyA", word(dem_->bodies()[pair.first.first].name));
+                os.writeEntry("bodyB", word(dem_->bodies()[pair.first.second].name));
+                os.writeEntry("tangentialSpring", v(h.tangentialSpring));
+                os.writeEntry("normal", v(h.normal));
+                os.writeEntry("point", v(h.point));
+                os.writeEntry("approach", h.approach);
+                os.writeEntry("maxNormalForce", h.maxNormalForce);
+                os.endBlock();
+            }
+        }
+        os  << decrIndent << token::END_BLOCK << nl;
+        if (!os.good())
+        {
+            FatalErrorInFunction
+                << "Could not write " << tmp << exit(FatalError);
+        }
+    }
+    if (!Foam::mv(tmp, file))
+    {
+        FatalErrorInFunction
+            << "Could not rename " << tmp << " to " << file << exit(FatalError);
+    }
+}
+
+
+bool Foam::immersedDEMState::readRestart()
+{
+    const fileName file = restartFile(mesh_.time().timePath());
+    if (!isFile(file))
+    {
+        return false;
+    }
+    Info<< "immersedDEM: restarting from " << file << endl;
+    IFstream is(file);
+    const dictionary dict(is);
+
+    auto& bodies = dem_->bodies();
+    std::map<std::string, int> index;
+    forAll(bodies, i)
+    {
+        index[bodies[i].name] = i;
+    }
+    auto bodyIndex = [&](const dictionary& d, const word& key)
+    {
+        const word name = d.get<word>(key);
+        const auto it = index.find(name);
+        if (it == index.end())
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword '" << key << "' in " << d.name() << ": no body or wall '"
+                << name << "' in " << properties_.objectPath() << nl
+                << exit(FatalIOError);
+        }
+        return it->second;
+    };
+
+    const dictionary& bd = dict.subDict("bodies");
+    forAll(bodies, i)
+    {
+        rigidBody& b = bodies[i];
+        const dictionary* dp = bd.findDict(b.name);
+        if (!dp)
+        {
+            FatalIOErrorInFunction(bd)
+                << "No state for body '" << b.name << "' in " << file
+                << ": the bodies of " << properties_.objectPath()
+                << " must be those of the run that wrote it" << nl
+                << exit(FatalIOError);
+        }
+        const dictionary& d = *dp;
+        const List<scalar> q(d.get<List<scalar>>("orientation"));
+        if (q.size() != 4)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword 'orientation' in " << d.name()
+                << " must be a quaternion (w x y z)" << nl << exit(FatalIOError);
+        }
+        b.pose = bodyPose(c(d.get<vector>("position")), quat(q[0], q[1], q[2], q[3]));
+        b.velocity = c(d.get<vector>("velocity"));
+        b.angularVelocity = c(d.get<vector>("angularVelocity"));
+        fluidLoad::fields(b.fluid, fluidLoadReader{d});
+        coupling_->readBody(d, i);
+    }
+
+    std::map<std::pair<int, int>, std::vector<contactHistory>> histories;
+    const dictionary& cd = dict.subDict("contacts");
+    for (const entry& e : cd)
+    {
+        const dictionary& d = e.dict();
+        contactHistory h;
+        h.tangentialSpring = c(d.get<vector>("tangentialSpring"));
+        h.normal = c(d.get<vector>("normal"));
+        h.point = c(d.get<vector>("point"));
+        h.approach = d.get<scalar>("approach");
+        h.maxNormalForce = d.get<scalar>("maxNormalForce");
+        histories[{bodyIndex(d, "bodyA"), bodyIndex(d, "bodyB")}].push_back(h);
+    }
+    dem_->setHistories(std::move(histories));
+    dem_->setTime(dict.get<scalar>("time"));
+    return true;
+}

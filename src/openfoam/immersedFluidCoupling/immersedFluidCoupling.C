@@ -1,0 +1,179 @@
+#include "immersedFluidCoupling.H"
+#include "immersedBoundaryProjection.H"
+#include "immersedDEMReader.H"
+#include "immersedForcing.H"
+#include "parallelSum.H"
+#include "clockTime.H"
+
+using namespace immersedDEM;
+
+
+namespace
+{
+
+Foam::vector v(const vec3& x)
+{
+    return Foam::immersedDEMReader::toFoam(x);
+}
+
+vec3 c(const Foam::vector& x)
+{
+    return Foam::immersedDEMReader::toCore(x);
+}
+
+} // End anonymous namespace
+
+
+Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
+{
+    const label n = dem.bodies().size();
+    innerMomentum_.setSize(n, Zero);
+    innerAngularMomentum_.setSize(n, Zero);
+    previousVelocity_.setSize(n, Zero);
+    previousAngularVelocity_.setSize(n, Zero);
+    for (label i = 0; i < n; ++i)
+    {
+        previousVelocity_[i] = v(dem.bodies()[i].velocity);
+        previousAngularVelocity_[i] = v(dem.bodies()[i].angularVelocity);
+    }
+}
+
+
+void Foam::immersedFluidCoupling::setInnerMomentum
+(
+    const immersedBoundaryProjection& projection,
+    const demSolver& dem,
+    const volVectorField& U
+)
+{
+    if (innerMomentumSet_)
+    {
+        return;
+    }
+    // The fluid inside the bodies as it is before the first step: if it
+    // is at rest while a body starts moving, the first step's forcing sets
+    // it in motion, and the inner term must cancel that part of the
+    // forcing's reaction (it is the body's own volume, not the fluid
+    // around it, being accelerated)
+    List<vector> P, PM;
+    fluidSums(projection, dem, U, 0, P, PM, innerMomentum_, innerAngularMomentum_);
+    innerMomentumSet_ = true;
+}
+
+
+void Foam::immersedFluidCoupling::fluidSums
+(
+    const immersedBoundaryProjection& projection,
+    const demSolver& dem,
+    const volVectorField& U,
+    const scalar deltaT,
+    List<vector>& penalty,
+    List<vector>& penaltyMoment,
+    List<vector>& momentum,
+    List<vector>& angularMomentum
+) const
+{
+    const label n = dem.bodies().size();
+    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    {
+        l->setSize(n);
+        *l = Zero;
+    }
+    const fvMesh& mesh = U.mesh();
+    const scalarField& V = mesh.V();
+    const vectorField& C = mesh.cellCentres();
+    const scalarField& lambda = projection.lambda().primitiveField();
+    const vectorField& Uib = projection.Uib().primitiveField();
+    const labelList& bodyOf = projection.bodyOf();
+    for (const label celli : projection.touched())
+    {
+        const label i = bodyOf[celli];
+        if (i < 0) continue;
+        const scalar w = lambda[celli]*V[celli];
+        const vector r = C[celli] - v(dem.bodies()[i].pose.position());
+        const vector d =
+            projection.cellCoefficient(celli, deltaT)*V[celli]*(U[celli] - Uib[celli]);
+        const vector m = w*U[celli];
+        penalty[i] += d;
+        penaltyMoment[i] += r ^ d;
+        momentum[i] += m;
+        angularMomentum[i] += r ^ m;
+    }
+    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    {
+        immersedDEMParallel::sumOverProcessors(*l);
+    }
+}
+
+
+void Foam::immersedFluidCoupling::fluidLoads
+(
+    const immersedBoundaryProjection& projection,
+    demSolver& dem,
+    const volVectorField& U,
+    scalar rho,
+    scalar deltaT,
+    scalar Ca
+)
+{
+    const clockTime timer;
+    setInnerMomentum(projection, dem, U);
+    List<vector> P, PM, M, L;
+    fluidSums(projection, dem, U, deltaT, P, PM, M, L);
+    auto& bodies = dem.bodies();
+    forAll(M, i)
+    {
+        if (dem.isWall(i)) continue;
+        rigidBody& b = bodies[i];
+        const scalar Vb = b.geometry->volume();
+        const vec3 F = immersedForcing::fluidForce
+        (
+            rho, c(P[i]), c(M[i]), c(innerMomentum_[i]), deltaT, Vb,
+            dem.settings().gravity
+        );
+        const vec3 T = immersedForcing::fluidTorque
+        (
+            rho, c(PM[i]), c(L[i]), c(innerAngularMomentum_[i]), deltaT
+        );
+        // The added moment of inertia from the mean principal moment
+        const scalar Ia = Ca*rho/b.density*b.inertia().sum()/3;
+        b.fluid = fluidLoad::stabilised
+        (
+            F, T, Ca*rho*Vb, Ia, deltaT, dem.time(),
+            b.velocity, c(previousVelocity_[i]),
+            b.angularVelocity, c(previousAngularVelocity_[i])
+        );
+        previousVelocity_[i] = v(b.velocity);
+        previousAngularVelocity_[i] = v(b.angularVelocity);
+        innerMomentum_[i] = M[i];
+        innerAngularMomentum_[i] = L[i];
+    }
+    seconds_ += timer.elapsedTime();
+}
+
+
+Foam::scalar Foam::immersedFluidCoupling::takeSeconds()
+{
+    const scalar s = seconds_;
+    seconds_ = 0;
+    return s;
+}
+
+
+void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
+{
+    os.writeEntry("previousVelocity", previousVelocity_[i]);
+    os.writeEntry("previousAngularVelocity", previousAngularVelocity_[i]);
+    os.writeEntry("innerMomentum", innerMomentum_[i]);
+    os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
+}
+
+
+void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
+{
+    previousVelocity_[i] = d.get<vector>("previousVelocity");
+    previousAngularVelocity_[i] = d.get<vector>("previousAngularVelocity");
+    innerMomentum_[i] = d.get<vector>("innerMomentum");
+    innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
+    innerMomentumSet_ = true;
+}
