@@ -80,10 +80,71 @@ double demSolver::effectiveRadius(int a, int b) const
 }
 
 
-std::vector<std::pair<int, int>> demSolver::candidatePairs() const
+std::vector<std::pair<int, int>> demSolver::gridPairs
+(
+    const std::vector<axisAlignedBox>& box, const std::vector<int>& others
+)
+{
+    double cell = 0;
+    for (const int i : others)
+    {
+        cell = std::max(cell, box[i].span().maxCoeff());
+    }
+    std::vector<std::pair<int, int>> pairs;
+    if (!(cell > 0))
+    {
+        return pairs;
+    }
+    // A uniform grid of cells as large as the largest box, so a box spans
+    // at most 2 cells per axis. A pair is tested in the cell holding the
+    // lower corner of the two boxes' intersection only, so it is found once.
+    using key = std::array<long, 3>;
+    auto index = [cell](const vec3& p)
+    {
+        return key
+        {
+            long(std::floor(p.x()/cell)), long(std::floor(p.y()/cell)),
+            long(std::floor(p.z()/cell))
+        };
+    };
+    // (cell, body) entries sorted by cell: the bodies of a cell are a run
+    std::vector<std::pair<key, int>> entries;
+    entries.reserve(8*others.size());
+    for (const int i : others)
+    {
+        const key lo = index(box[i].min), hi = index(box[i].max);
+        for (long x = lo[0]; x <= hi[0]; ++x)
+            for (long y = lo[1]; y <= hi[1]; ++y)
+                for (long z = lo[2]; z <= hi[2]; ++z)
+                    entries.emplace_back(key{x, y, z}, i);
+    }
+    std::sort(entries.begin(), entries.end());
+    for (size_t first = 0; first < entries.size();)
+    {
+        size_t last = first;
+        while (last < entries.size() && entries[last].first == entries[first].first) ++last;
+        for (size_t s = first; s < last; ++s)
+        {
+            for (size_t t = s + 1; t < last; ++t)
+            {
+                const int i = entries[s].second, j = entries[t].second;
+                if (!box[i].overlaps(box[j])) continue;
+                if (index(box[i].min.cwiseMax(box[j].min)) != entries[first].first) continue;
+                pairs.emplace_back(std::min(i, j), std::max(i, j));
+            }
+        }
+        first = last;
+    }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+
+std::vector<std::pair<int, int>> demSolver::candidatePairs()
 {
     const int n = int(bodies_.size());
-    std::vector<axisAlignedBox> box(n);
+    std::vector<axisAlignedBox>& box = boxes_;
+    box.resize(n);
     std::vector<int> walls, others;
     double cell = 0;
     for (int i = 0; i < n; ++i)
@@ -100,7 +161,31 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs() const
         }
     }
 
+    // The neighbour list: pairs of bodies whose boxes, grown by a skin,
+    // overlap. Kept while every box stays inside its grown box of the last
+    // build, so that any two boxes that overlap now are in it
+    bool valid = listBox_.size() == size_t(n);
+    for (int k = 0; valid && k < int(others.size()); ++k)
+    {
+        const int i = others[k];
+        valid =
+            (box[i].min.array() >= listBox_[i].min.array()).all()
+         && (box[i].max.array() <= listBox_[i].max.array()).all();
+    }
+    if (!valid)
+    {
+        const double skin = 0.1*cell;
+        listBox_.assign(n, axisAlignedBox());
+        for (const int i : others)
+        {
+            listBox_[i] = box[i].inflated(skin);
+        }
+        neighbours_ = gridPairs(listBox_, others);
+        ++counters_.broadPhaseBuilds;
+    }
+
     std::vector<std::pair<int, int>> pairs;
+    pairs.reserve(neighbours_.size() + walls.size()*others.size());
 
     // Walls (few, large) against every body that can move
     for (const int w : walls)
@@ -113,58 +198,21 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs() const
             }
         }
     }
-
-    // Bodies: a uniform grid of cells as large as the largest body, so a
-    // body's box spans at most 2 cells per axis. A pair is tested in the
-    // cell holding the lower corner of the two boxes' intersection only,
-    // so it is found once.
-    if (cell > 0)
+    // Both parts are sorted: merge them
+    const size_t nWallPairs = pairs.size();
+    for (const auto& p : neighbours_)
     {
-        using key = std::array<long, 3>;
-        auto index = [cell](const vec3& p)
-        {
-            return key
-            {
-                long(std::floor(p.x()/cell)), long(std::floor(p.y()/cell)),
-                long(std::floor(p.z()/cell))
-            };
-        };
-        // (cell, body) entries sorted by cell: the bodies of a cell are a run
-        std::vector<std::pair<key, int>> entries;
-        entries.reserve(8*others.size());
-        for (const int i : others)
-        {
-            const key lo = index(box[i].min), hi = index(box[i].max);
-            for (long x = lo[0]; x <= hi[0]; ++x)
-                for (long y = lo[1]; y <= hi[1]; ++y)
-                    for (long z = lo[2]; z <= hi[2]; ++z)
-                        entries.emplace_back(key{x, y, z}, i);
-        }
-        std::sort(entries.begin(), entries.end());
-        for (size_t first = 0; first < entries.size();)
-        {
-            size_t last = first;
-            while (last < entries.size() && entries[last].first == entries[first].first) ++last;
-            for (size_t s = first; s < last; ++s)
-            {
-                for (size_t t = s + 1; t < last; ++t)
-                {
-                    const int i = entries[s].second, j = entries[t].second;
-                    if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
-                    if (!box[i].overlaps(box[j])) continue;
-                    if (index(box[i].min.cwiseMax(box[j].min)) != entries[first].first) continue;
-                    pairs.emplace_back(i, j);
-                }
-            }
-            first = last;
-        }
+        const int i = p.first, j = p.second;
+        if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
+        if (!box[i].overlaps(box[j])) continue;
+        pairs.push_back(p);
     }
-    std::sort(pairs.begin(), pairs.end());
+    std::inplace_merge(pairs.begin(), pairs.begin() + nWallPairs, pairs.end());
     return pairs;
 }
 
 
-void demSolver::evaluatePair
+bool demSolver::evaluatePair
 (
     int ia, int ib,
     std::map<std::pair<int, int>, std::vector<contactHistory>>& next
@@ -177,7 +225,7 @@ void demSolver::evaluatePair
     counters_.queries += g.queries;
     if (g.regions.empty())
     {
-        return;
+        return false;
     }
 
     const auto key = std::make_pair(ia, ib);
@@ -260,6 +308,7 @@ void demSolver::evaluatePair
         rec.force = f;
         contacts_.push_back(rec);
     }
+    return true;
 }
 
 
@@ -286,9 +335,33 @@ void demSolver::computeContacts()
     updateExternalLoads(loadTime_);
     contacts_.clear();
     std::map<std::pair<int, int>, std::vector<contactHistory>> next;
+    const bool filter = settings_.rejectSeparated;
+    if (filter)
+    {
+        filter_.setReach(pairFilter::engineReach(engine_->type(), settings_.overlap));
+        filter_.beginSweep();
+    }
     for (const auto& p : candidatePairs())
     {
-        evaluatePair(p.first, p.second, next);
+        const rigidBody& A = bodies_[p.first];
+        const rigidBody& B = bodies_[p.second];
+        if
+        (
+            filter
+         && filter_.separated(p.first, p.second, *A.geometry, A.pose, *B.geometry, B.pose)
+        )
+        {
+            continue;
+        }
+        const bool touching = evaluatePair(p.first, p.second, next);
+        if (filter)
+        {
+            filter_.engineResult(p.first, p.second, touching);
+        }
+    }
+    if (filter)
+    {
+        filter_.endSweep();
     }
     history_.swap(next);
     forcesCurrent_ = true;

@@ -2,6 +2,8 @@
 #include "coreError.H"
 
 #include <cmath>
+#include <algorithm>
+#include <array>
 #include <map>
 
 namespace immersedDEM
@@ -195,6 +197,52 @@ triangleSoup primitiveMeshes::extrudedPolygon
 void primitiveMeshes::transform(triangleSoup& soup, const mat3& R, const vec3& t)
 {
     for (vec3& p : soup.points) p = R*p + t;
+}
+
+triangleSoup primitiveMeshes::openBox(const vec3& lo, const vec3& hi, int n)
+{
+    n = std::max(1, n);
+    triangleSoup s;
+    // Points by their lattice position (i, j, k) in 0..n, shared by sides
+    std::map<std::array<int, 3>, int> id;
+    const vec3 e = hi - lo;
+    auto point = [&](const std::array<int, 3>& ijk)
+    {
+        const auto it = id.find(ijk);
+        if (it != id.end()) return it->second;
+        const int k = int(s.points.size());
+        s.points.push_back(lo + vec3(e.x()*ijk[0]/n, e.y()*ijk[1]/n, e.z()*ijk[2]/n));
+        id.emplace(ijk, k);
+        return k;
+    };
+    // A side: axis 'a' fixed at index 'at'; u, v the other axes, ordered
+    // so that u x v points into the box
+    auto side = [&](int a, int at, int u, int v)
+    {
+        for (int i = 0; i < n; ++i)
+        {
+            for (int j = 0; j < n; ++j)
+            {
+                auto p = [&](int di, int dj)
+                {
+                    std::array<int, 3> ijk;
+                    ijk[a] = at;
+                    ijk[u] = i + di;
+                    ijk[v] = j + dj;
+                    return point(ijk);
+                };
+                const int p00 = p(0, 0), p10 = p(1, 0), p11 = p(1, 1), p01 = p(0, 1);
+                s.faces.push_back({p00, p10, p11});
+                s.faces.push_back({p00, p11, p01});
+            }
+        }
+    };
+    side(2, 0, 0, 1);   // floor: x, y -> +z
+    side(0, 0, 1, 2);   // x = lo: y, z -> +x
+    side(0, n, 2, 1);   // x = hi: z, y -> -x
+    side(1, 0, 2, 0);   // y = lo: z, x -> +y
+    side(1, n, 0, 2);   // y = hi: x, z -> -y
+    return s;
 }
 
 } // End namespace immersedDEM

@@ -1,6 +1,7 @@
 #include "triangleBVH.H"
 
 #include <algorithm>
+#include <cmath>
 
 namespace immersedDEM
 {
@@ -16,7 +17,266 @@ double boxDistSqr(const vec3& p, const vec3& lo, const vec3& hi)
     return d.squaredNorm();
 }
 
+//- Squared distance of the segments pq and uv
+double segmentDistSqr(const vec3& p, const vec3& q, const vec3& u, const vec3& v)
+{
+    // Minimise |p + s d1 - u - t d2|^2 over [0, 1]^2: the unconstrained
+    // s clamped, t from it, clamped, and s again from the clamped t
+    const vec3 d1 = q - p, d2 = v - u, r = p - u;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+    double s = 0, t = 0;
+    if (a <= 0 && e <= 0)
+    {
+        return r.squaredNorm();
+    }
+    if (a <= 0)
+    {
+        t = std::clamp(f/e, 0.0, 1.0);
+    }
+    else
+    {
+        const double c = d1.dot(r);
+        if (e <= 0)
+        {
+            s = std::clamp(-c/a, 0.0, 1.0);
+        }
+        else
+        {
+            const double b = d1.dot(d2);
+            const double den = a*e - b*b;
+            s = den > 0 ? std::clamp((b*f - c*e)/den, 0.0, 1.0) : 0.0;
+            t = (b*s + f)/e;
+            if (t < 0)
+            {
+                t = 0;
+                s = std::clamp(-c/a, 0.0, 1.0);
+            }
+            else if (t > 1)
+            {
+                t = 1;
+                s = std::clamp((b - c)/a, 0.0, 1.0);
+            }
+        }
+    }
+    return (r + s*d1 - t*d2).squaredNorm();
+}
+
+
+//- Whether segment pq crosses the plane of triangle abc inside it
+//  (inclusive, with a round-off margin). A segment in the triangle's plane
+//  is left to the edge and corner distances, which decide that case.
+bool segmentCrossesTriangle
+(
+    const vec3& p, const vec3& q, const vec3& a, const vec3& b, const vec3& c
+)
+{
+    const vec3 n = (b - a).cross(c - a);
+    const double dp = n.dot(p - a), dq = n.dot(q - a);
+    if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq)
+    {
+        return false;
+    }
+    const vec3 x = p + (dp/(dp - dq))*(q - p);
+    const double tol = -1e-9*n.squaredNorm();
+    return n.dot((b - a).cross(x - a)) >= tol
+        && n.dot((c - b).cross(x - b)) >= tol
+        && n.dot((a - c).cross(x - c)) >= tol;
+}
+
+
+double boxDistSqr(const vec3& loA, const vec3& hiA, const vec3& cB, const vec3& hB)
+{
+    const vec3 d = (loA - cB - hB).cwiseMax(cB - hB - hiA).cwiseMax(0.0);
+    return d.squaredNorm();
+}
+
 } // End anonymous namespace
+
+
+double triangleBVH::triangleDistance
+(
+    const std::array<vec3, 3>& a, const std::array<vec3, 3>& b
+)
+{
+    // Two triangles that do not meet are nearest at a corner of one and
+    // the other triangle, or at two edges; they meet where an edge of one
+    // crosses the other (or, in one plane, where edges cross or a corner
+    // lies inside: distance 0 from those features already)
+    for (int i = 0; i < 3; ++i)
+    {
+        const int j = (i + 1) % 3;
+        if
+        (
+            segmentCrossesTriangle(a[i], a[j], b[0], b[1], b[2])
+         || segmentCrossesTriangle(b[i], b[j], a[0], a[1], a[2])
+        )
+        {
+            return 0;
+        }
+    }
+    double d2 = std::numeric_limits<double>::max();
+    int feature;
+    for (int i = 0; i < 3; ++i)
+    {
+        d2 = std::min(d2, (closestOnTriangle(a[i], b[0], b[1], b[2], feature) - a[i]).squaredNorm());
+        d2 = std::min(d2, (closestOnTriangle(b[i], a[0], a[1], a[2], feature) - b[i]).squaredNorm());
+        for (int k = 0; k < 3; ++k)
+        {
+            d2 = std::min(d2, segmentDistSqr(a[i], a[(i + 1) % 3], b[k], b[(k + 1) % 3]));
+        }
+    }
+    return std::sqrt(d2);
+}
+
+
+double triangleBVH::separation
+(
+    const triangleBVH& A, const triangleBVH& B,
+    const mat3& R, const vec3& t, double cap, double stopBelow
+)
+{
+    if (A.nodes_.empty() || B.nodes_.empty())
+    {
+        return cap;
+    }
+    const mat3 absR = R.cwiseAbs();
+    // Round-off of the distances: relative to the sizes and the offset
+    const double slack =
+        1e-12*
+        (
+            (A.nodes_[0].hi - A.nodes_[0].lo).norm()
+          + (B.nodes_[0].hi - B.nodes_[0].lo).norm() + t.norm()
+        );
+
+    struct pairOfNodes { int a, b; };
+    std::vector<pairOfNodes> stack;
+    stack.reserve(128);
+    stack.push_back({0, 0});
+    double best = cap + slack;
+    double best2 = best*best;
+
+    auto distSqr = [&](int ia, int ib)
+    {
+        const node& na = A.nodes_[ia];
+        const node& nb = B.nodes_[ib];
+        const vec3 c = R*(0.5*(nb.lo + nb.hi)) + t;
+        const vec3 h = absR*(0.5*(nb.hi - nb.lo));
+        return boxDistSqr(na.lo, na.hi, c, h);
+    };
+
+    std::array<vec3, 3> tb;
+    while (!stack.empty())
+    {
+        const pairOfNodes pr = stack.back();
+        stack.pop_back();
+        if (distSqr(pr.a, pr.b) >= best2)
+        {
+            continue;
+        }
+        const node& na = A.nodes_[pr.a];
+        const node& nb = B.nodes_[pr.b];
+        if (na.count && nb.count)
+        {
+            for (int sb = nb.first; sb < nb.first + nb.count; ++sb)
+            {
+                for (int k = 0; k < 3; ++k)
+                {
+                    tb[k] = R*B.corners_[sb][k] + t;
+                }
+                for (int sa = na.first; sa < na.first + na.count; ++sa)
+                {
+                    const double d = triangleDistance(A.corners_[sa], tb);
+                    if (d < best)
+                    {
+                        best = d;
+                        best2 = d*d;
+                        if (best < stopBelow)
+                        {
+                            return best - slack;
+                        }
+                    }
+                }
+            }
+            continue;
+        }
+        // Split the larger node (an inner one), nearer child on top
+        const bool splitA =
+            !na.count
+         && (nb.count || (na.hi - na.lo).squaredNorm() >= (nb.hi - nb.lo).squaredNorm());
+        pairOfNodes p1, p2;
+        if (splitA)
+        {
+            p1 = {na.first, pr.b};
+            p2 = {na.right, pr.b};
+        }
+        else
+        {
+            p1 = {pr.a, nb.first};
+            p2 = {pr.a, nb.right};
+        }
+        const double d1 = distSqr(p1.a, p1.b), d2 = distSqr(p2.a, p2.b);
+        if (d1 <= d2)
+        {
+            if (d2 < best2) stack.push_back(p2);
+            if (d1 < best2) stack.push_back(p1);
+        }
+        else
+        {
+            if (d1 < best2) stack.push_back(p1);
+            if (d2 < best2) stack.push_back(p2);
+        }
+    }
+    return std::min(best, cap) - slack;
+}
+
+
+double triangleBVH::minAlong(const vec3& n) const
+{
+    double best = std::numeric_limits<double>::max();
+    if (nodes_.empty())
+    {
+        return best;
+    }
+    const vec3 absN = n.cwiseAbs();
+    auto lower = [&](const node& nd)
+    {
+        return n.dot(0.5*(nd.lo + nd.hi)) - absN.dot(0.5*(nd.hi - nd.lo));
+    };
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top)
+    {
+        const node& nd = nodes_[stack[--top]];
+        if (lower(nd) >= best)
+        {
+            continue;
+        }
+        if (nd.count)
+        {
+            for (int s = nd.first; s < nd.first + nd.count; ++s)
+            {
+                for (const vec3& x : corners_[s])
+                {
+                    best = std::min(best, n.dot(x));
+                }
+            }
+            continue;
+        }
+        const int l = nd.first, r = nd.right;
+        if (lower(nodes_[l]) <= lower(nodes_[r]))
+        {
+            stack[top++] = r;
+            stack[top++] = l;
+        }
+        else
+        {
+            stack[top++] = l;
+            stack[top++] = r;
+        }
+    }
+    return best;
+}
 
 
 vec3 triangleBVH::closestOnTriangle

@@ -60,14 +60,31 @@ wallMeshShape::wallMeshShape
         }
     }
     onRim_.assign(surface_.faces.size(), 0);
+    std::vector<char> openVertex(surface_.points.size(), 0);
     for (size_t fi = 0; fi < surface_.faces.size(); ++fi)
     {
         const triFace& f = surface_.faces[fi];
         for (int k = 0; k < 3; ++k)
         {
             const int a = f[k], b = f[(k + 1)%3];
-            if (edgeUses[{std::min(a, b), std::max(a, b)}] == 1) onRim_[fi] = 1;
+            const int uses = edgeUses[{std::min(a, b), std::max(a, b)}];
+            if (uses == 1) onRim_[fi] = 1;
+            if (uses != 2) openVertex[a] = openVertex[b] = 1;
         }
+    }
+    // The faces at a vertex of an open (or non-manifold) edge
+    triangleSoup open;
+    open.points = surface_.points;
+    for (const triFace& f : surface_.faces)
+    {
+        if (openVertex[f[0]] || openVertex[f[1]] || openVertex[f[2]])
+        {
+            open.faces.push_back(f);
+        }
+    }
+    if (!open.faces.empty())
+    {
+        openTree_ = std::make_unique<triangleBVH>(open);
     }
 }
 

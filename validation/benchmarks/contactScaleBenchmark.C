@@ -1,0 +1,318 @@
+/*---------------------------------------------------------------------------*\
+Application
+    contactScaleBenchmark
+
+Description
+    The DEM's cost at scale (issue 20), measured side by side in one run:
+
+    1. No contact: N lumpy stars (5,120 triangles, the arbitraryBodiesCollision
+       template's lumpyStar.stl) on a cubic lattice, at random orientations,
+       spaced so that their boxes and bounding spheres overlap (spacing
+       1.94 R) but no two come within 0.15 d (the
+       engine's reach is 0.087 d), inside an open box wall (a wallMeshShape of 2 x 20 x 20
+       triangles per side, whose box holds every body, 0.3 R from the
+       nearest, its rim 7 R above the top layer) and above a plane
+       floor; bodies drift slowly (1 mm/s, 1 rad/s) with no gravity. The
+       DEM's contact CPU per body per sub-step with the pair filter off
+       (every candidate pair to the overlap engine: the code before issue 20)
+       and on. virtualMesh at cellSize d/10, level 1 (the issue's runs).
+    2. One contact per sub-step: two 20-face icosahedra (circumradius 5 mm)
+       0.1 mm deep (virtualMesh level 3, h = d/10), and two lumpy stars
+       pressed to an overlap of about 2e-9 m^3 (cellSize d/10, level 1):
+       the DEM's contact CPU per sub-step, filter off and on (the filter
+       must not slow a contact down).
+    3. Memory per body: the heap in use (mallinfo2) per body for N bodies
+       of one shared surface (each body a pose), and for bodies each
+       reading its own copy of the surface (the reader before issue 20).
+
+Usage
+    contactScaleBenchmark [N] [--stl=file] [--steps=n]
+
+    N       bodies of the no-contact lattice (default 27 = 3^3)
+    steps   sub-steps with the filter on (default 200; off: steps/10)
+\*---------------------------------------------------------------------------*/
+
+#include "demSolver.H"
+#include "halfSpaceShape.H"
+#include "triangleMeshShape.H"
+#include "wallMeshShape.H"
+#include "primitiveMeshes.H"
+#include "coreError.H"
+
+#include <malloc.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <time.h>
+#include <random>
+#include <string>
+
+using namespace immersedDEM;
+
+namespace
+{
+
+//- CPU seconds of this thread (the machine may be shared: not wall time)
+double cpuSeconds()
+{
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9*t.tv_nsec;
+}
+
+size_t heapInUse()
+{
+    malloc_trim(0);
+    return mallinfo2().uordblks + mallinfo2().hblkhd;
+}
+
+quat randomRotation(std::mt19937& g)
+{
+    std::normal_distribution<double> n;
+    return quat(n(g), n(g), n(g), n(g)).normalized();
+}
+
+struct result
+{
+    double usPerBody = 0;       //!< contact CPU per body per sub-step
+    double usPerStep = 0;       //!< contact CPU per sub-step
+    long evaluations = 0;
+    long contacts = 0;
+    pairFilter::counters filter;
+};
+
+// 1. The lattice without contact
+result lattice
+(
+    const std::shared_ptr<const triangleMeshShape>& star, int N, int steps, bool filter,
+    double& d
+)
+{
+    const double R = star->boundingRadius();
+    d = 2*std::cbrt(3*star->volume()/(4*M_PI));
+    contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
+    demSettings s;
+    s.overlap = {d/10, 1};
+    s.rejectSeparated = filter;
+    s.deltaT = 1e-5;
+    demSolver dem({glass}, s);
+
+    const int n = std::max(1, int(std::round(std::cbrt(double(N)))));
+    // Spacing: the bounding spheres overlap (1.94 R < 2 R), orientations
+    // drawn until no two neighbours touch
+    const double a = 1.94*R;
+    std::mt19937 g(1);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<rigidBody> placed;
+    for (int k = 0; k < N; ++k)
+    {
+        const vec3 x(a*(k % n), a*((k / n) % n), a*(k/(n*n)) + R);
+        rigidBody b("star" + std::to_string(k), star, 2500);
+        for (int tries = 0; tries < 2000; ++tries)
+        {
+            b.pose = bodyPose(x, randomRotation(g));
+            bool touches = false;
+            for (const rigidBody& o : placed)
+            {
+                if ((o.pose.position() - x).norm() > 2*R) continue;
+                // Apart by 1.5 virtual-mesh cells: beyond the engine's reach
+                if (pairFilter::gapLowerBound(*star, o.pose, *star, b.pose, 0.15*d, d) < 0.15*d)
+                {
+                    touches = true;
+                    break;
+                }
+            }
+            if (!touches) break;
+        }
+        b.velocity = 1e-3*vec3(u(g), u(g), u(g));
+        b.angularVelocity = 1.0*vec3(u(g), u(g), u(g));
+        placed.push_back(b);
+        dem.addBody(b);
+    }
+    // Floor just below the lowest bodies, an open box around all
+    rigidBody floor("floor", std::make_shared<halfSpaceShape>(), 1);
+    floor.motion = motionType::fixed;
+    floor.pose = halfSpaceShape::poseOf(vec3(0, 0, -0.3*R), vec3::UnitZ());
+    dem.addBody(floor, true);
+    const vec3 lo = vec3::Constant(-1.3*R) + vec3(0, 0, 1.3*R);
+    // The rim 6 R above the top layer (see pairFilter: the sign behind an
+    // open rim)
+    const vec3 hi = vec3::Constant(a*(n - 1) + 1.3*R) + vec3(0, 0, 6*R);
+    rigidBody box("box", std::make_shared<wallMeshShape>(primitiveMeshes::openBox(lo - vec3(0, 0, 1.0*R), hi, 20), "box", 2*R), 1);
+    box.motion = motionType::fixed;
+    dem.addBody(box, true);
+
+    dem.computeContacts();
+    const long e0 = dem.work().pairEvaluations;
+    long contacts = 0;
+    const double c0 = cpuSeconds();
+    for (int i = 0; i < steps; ++i)
+    {
+        dem.step(s.deltaT);
+        contacts += long(dem.contacts().size());
+    }
+    result r;
+    r.usPerStep = 1e6*(cpuSeconds() - c0)/steps;
+    r.usPerBody = r.usPerStep/N;
+    r.evaluations = dem.work().pairEvaluations - e0;
+    r.contacts = contacts;
+    r.filter = dem.filterWork();
+    return r;
+}
+
+// 2. One pair in contact, at rest, pressed to a given depth
+result onePair
+(
+    const std::shared_ptr<const triangleMeshShape>& shape, const overlapSettings& o,
+    double depth, int steps, bool filter, double& volume
+)
+{
+    contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
+    demSettings s;
+    s.overlap = o;
+    s.rejectSeparated = filter;
+    s.deltaT = 1e-9;      // bodies hardly move: the same contact every step
+    demSolver dem({glass}, s);
+    // Along x: the support of each body from its bounding box in the
+    // body frame is not the contact gap, so find the touching distance by
+    // bisection on the exact overlap volume
+    const auto exact = overlapEngine::New("exact");
+    const quat qa = quat::Identity();
+    const quat qb = bodyPose::axisAngle(vec3(0.3, 1, 0.2), 0.7);
+    double lo = 0, hi = 4*shape->boundingRadius();
+    for (int i = 0; i < 60; ++i)
+    {
+        const double m = 0.5*(lo + hi);
+        const contactGeometry g = exact->evaluate
+        (
+            *shape, bodyPose(vec3::Zero(), qa), *shape, bodyPose(vec3(m, 0, 0), qb), o
+        );
+        (g.volume() > 0 ? lo : hi) = m;
+    }
+    const double x = lo - depth;
+    rigidBody A("a", shape, 2500), B("b", shape, 2500);
+    A.pose = bodyPose(vec3::Zero(), qa);
+    B.pose = bodyPose(vec3(x, 0, 0), qb);
+    dem.addBody(A);
+    dem.addBody(B);
+    dem.computeContacts();
+    volume = 0;
+    for (const contactRecord& c : dem.contacts()) volume += c.region.volume;
+    long contacts = 0;
+    const double c0 = cpuSeconds();
+    for (int i = 0; i < steps; ++i)
+    {
+        dem.step(s.deltaT);
+        contacts += long(dem.contacts().size());
+    }
+    result r;
+    r.usPerStep = 1e6*(cpuSeconds() - c0)/steps;
+    r.contacts = contacts;
+    r.filter = dem.filterWork();
+    return r;
+}
+
+} // End anonymous namespace
+
+
+int main(int argc, char* argv[])
+{
+    int N = 27;
+    int steps = 200;
+    std::string stl = std::string(__FILE__);
+    stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
+        + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
+    for (int i = 1; i < argc; ++i)
+    {
+        const std::string a = argv[i];
+        if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
+        else if (a.rfind("--steps=", 0) == 0) steps = std::max(10, std::atoi(a.c_str() + 8));
+        else if (a[0] != '-') N = std::max(1, std::atoi(a.c_str()));
+        else
+        {
+            std::fprintf(stderr, "Unknown option %s\n", a.c_str());
+            return 1;
+        }
+    }
+
+    try
+    {
+        // 3. Memory first, on a clean heap
+        const size_t h0 = heapInUse();
+        std::shared_ptr<const triangleMeshShape> star(triangleMeshShape::fromFile(stl));
+        const size_t h1 = heapInUse();
+        const double perSurface = double(h1 - h0);
+        const int M = 64;
+        double perSharedBody = 0;
+        {
+            contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
+            demSettings s;
+            s.deltaT = 1e-6;
+            s.overlap = {0.001, 1};
+            const size_t m0 = heapInUse();
+            demSolver dem({glass}, s);
+            for (int k = 0; k < M; ++k)
+            {
+                rigidBody b("b" + std::to_string(k), star, 2500);
+                b.pose = bodyPose(vec3(0.1*k, 0, 0), quat::Identity());
+                dem.addBody(b);
+            }
+            dem.step(1e-6);
+            perSharedBody = double(heapInUse() - m0)/M;
+        }
+        std::printf("# contactScaleBenchmark: lumpy star %s\n", stl.c_str());
+        std::printf("#   %zu triangles, bounding radius %.4g m\n", star->nTriangles(), star->boundingRadius());
+        std::printf("\nMemory per body (heap in use, mallinfo2)\n");
+        std::printf("  own copy of the surface (before)      %10.1f kB\n", perSurface/1024);
+        std::printf("  shared surface, per extra body (after) %9.2f kB   (target <= 100 kB)\n", perSharedBody/1024);
+
+        // 1. No contact
+        double d = 0;
+        const int stepsOff = std::max(2, steps/10);
+        const double t0 = cpuSeconds();
+        const result off = lattice(star, N, stepsOff, false, d);
+        const double t1 = cpuSeconds();
+        const result on = lattice(star, N, steps, true, d);
+        const double t2 = cpuSeconds();
+        std::printf("\nNo contact: %d lumpy stars (d = %.4g m), open box wall (4000 triangles) and a plane\n", N, d);
+        std::printf("  virtualMesh cellSize d/10 level 1; %d sub-steps off, %d on\n", stepsOff, steps);
+        std::printf("  contacts seen: off %ld, on %ld (must be 0)\n", off.contacts, on.contacts);
+        std::printf("  DEM contact CPU per body per sub-step: filter off %9.1f us, on %7.2f us   (target <= 10 us)   ratio %.0f\n",
+            off.usPerBody, on.usPerBody, off.usPerBody/on.usPerBody);
+        std::printf("  engine calls per sub-step: off %.1f, on %.2f\n",
+            double(off.evaluations)/stepsOff, double(on.evaluations)/steps);
+        std::printf("  filter: %ld pair tests, rejected by spheres %ld, by reuse %ld, by new proof %ld (proofs %ld), to the engine %ld\n",
+            on.filter.tested, on.filter.rejectedBySpheres, on.filter.rejectedByReuse,
+            on.filter.rejectedByProof, on.filter.proofs, on.filter.passed);
+        std::printf("  whole run CPU (setup included): off %.2f s, on %.2f s\n", t1 - t0, t2 - t1);
+
+        // 2. One contact per sub-step
+        std::printf("\nOne contact per sub-step (DEM contact CPU per sub-step)\n");
+        {
+            std::shared_ptr<const triangleMeshShape> ico
+            (
+                new triangleMeshShape(primitiveMeshes::icosphere(0.005, 0), "icosahedron")
+            );
+            const double di = 2*std::cbrt(3*ico->volume()/(4*M_PI));
+            double v0 = 0, v1 = 0;
+            const int n = std::max(10, steps/10);
+            const result a0 = onePair(ico, {di/10, 3}, 1e-4, n, false, v0);
+            const result a1 = onePair(ico, {di/10, 3}, 1e-4, n, true, v1);
+            std::printf("  icosahedra (20 faces), 0.1 mm deep, h = d/10 level 3, V = %.4g m3: off %8.1f us, on %8.1f us (target <= 100 us)\n",
+                v0, a0.usPerStep, a1.usPerStep);
+            const result b0 = onePair(star, {d/10, 1}, 2e-5, n, false, v0);
+            const result b1 = onePair(star, {d/10, 1}, 2e-5, n, true, v1);
+            std::printf("  lumpy stars (5120 faces), h = d/10 level 1, V = %.4g m3:           off %8.1f us, on %8.1f us (target <= 300 us)\n",
+                v0, b0.usPerStep, b1.usPerStep);
+        }
+    }
+    catch (const coreError& e)
+    {
+        std::fprintf(stderr, "Error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
