@@ -1,5 +1,5 @@
 #include "immersedBoundaryProjection.H"
-#include "immersedDEMReader.H"
+#include "coreConversion.H"
 #include "parallelSum.H"
 #include "boxFraction.H"
 #include "indexedOctree.H"
@@ -14,15 +14,8 @@ using namespace immersedDEM;
 namespace
 {
 
-Foam::vector v(const vec3& x)
-{
-    return Foam::immersedDEMReader::toFoam(x);
-}
-
-vec3 c(const Foam::vector& x)
-{
-    return Foam::immersedDEMReader::toCore(x);
-}
+constexpr auto v = &Foam::coreConversion::toFoam;
+constexpr auto c = &Foam::coreConversion::toCore;
 
 } // End anonymous namespace
 

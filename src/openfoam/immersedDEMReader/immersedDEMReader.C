@@ -18,18 +18,6 @@
 
 using namespace immersedDEM;
 
-immersedDEM::vec3 Foam::immersedDEMReader::toCore(const vector& v)
-{
-    return vec3(v.x(), v.y(), v.z());
-}
-
-
-Foam::vector Foam::immersedDEMReader::toFoam(const immersedDEM::vec3& v)
-{
-    return vector(v.x(), v.y(), v.z());
-}
-
-
 namespace
 {
 

@@ -4,7 +4,7 @@
 // uninterrupted one)
 
 #include "immersedDEMState.H"
-#include "immersedDEMReader.H"
+#include "coreConversion.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "OSspecific.H"
@@ -15,15 +15,8 @@ using namespace immersedDEM;
 namespace
 {
 
-Foam::vector v(const vec3& x)
-{
-    return Foam::immersedDEMReader::toFoam(x);
-}
-
-vec3 c(const Foam::vector& x)
-{
-    return Foam::immersedDEMReader::toCore(x);
-}
+constexpr auto v = &Foam::coreConversion::toFoam;
+constexpr auto c = &Foam::coreConversion::toCore;
 
 // fluidLoad::fields visitors: each member under its restart name
 struct fluidLoadWriter

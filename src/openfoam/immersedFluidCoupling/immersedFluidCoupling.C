@@ -1,6 +1,6 @@
 #include "immersedFluidCoupling.H"
 #include "immersedBoundaryProjection.H"
-#include "immersedDEMReader.H"
+#include "coreConversion.H"
 #include "immersedForcing.H"
 #include "parallelSum.H"
 #include "clockTime.H"
@@ -11,15 +11,8 @@ using namespace immersedDEM;
 namespace
 {
 
-Foam::vector v(const vec3& x)
-{
-    return Foam::immersedDEMReader::toFoam(x);
-}
-
-vec3 c(const Foam::vector& x)
-{
-    return Foam::immersedDEMReader::toCore(x);
-}
+constexpr auto v = &Foam::coreConversion::toFoam;
+constexpr auto c = &Foam::coreConversion::toCore;
 
 } // End anonymous namespace
 
