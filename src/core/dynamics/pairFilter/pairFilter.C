@@ -219,6 +219,20 @@ bool pairFilter::separated
         ++counters_.passed;
         return false;
     }
+    // A plane and a sphere: the exact gap costs less than a record
+    const bool planeA = sB && dynamic_cast<const halfSpaceShape*>(&A);
+    const bool planeB = sA && dynamic_cast<const halfSpaceShape*>(&B);
+    if (planeA || planeB)
+    {
+        const double g = planeA ? planeGap(pA, B, pB) : planeGap(pB, A, pA);
+        if (g > reach_)
+        {
+            ++counters_.rejectedBySpheres;
+            return true;
+        }
+        ++counters_.passed;
+        return false;
+    }
 
     record& r = records_[key(a, b)];
     const bool known = r.stamp != 0;
