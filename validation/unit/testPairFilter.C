@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 
 using namespace immersedDEM;
 
@@ -312,4 +313,75 @@ TEST(pairFilter, demUnchangedByFilter)
               << "; tested " << f1.tested << ", by spheres " << f1.rejectedBySpheres
               << ", by reuse " << f1.rejectedByReuse << ", by proof " << f1.rejectedByProof
               << ", proofs " << f1.proofs << std::endl;
+}
+
+
+// The broad phase's neighbour list (rebuilt only when a box leaves its
+// grown box) misses no contact: in a pour of spheres of two sizes, every
+// overlapping pair (by brute force over all pairs) is among the contacts of
+// every step, and the list was rebuilt far less often than every step
+TEST(pairFilter, neighbourListMissesNoContact)
+{
+    contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
+    demSettings s;
+    s.overlapMethod = "sphere";
+    s.contactLaw = "hertzMindlin";
+    s.gravity = vec3(0, 0, -9.81);
+    s.deltaT = 2e-5;
+    demSolver dem({glass}, s);
+    const double W = 0.012;
+    const vec3 normals[] = {vec3::UnitZ(), vec3::UnitX(), -vec3::UnitX(), vec3::UnitY(), -vec3::UnitY()};
+    const vec3 points[] = {vec3::Zero(), vec3::Zero(), vec3(W, 0, 0), vec3::Zero(), vec3(0, W, 0)};
+    for (int k = 0; k < 5; ++k)
+    {
+        rigidBody w("w" + std::to_string(k), std::make_shared<halfSpaceShape>(), 1);
+        w.motion = motionType::fixed;
+        w.pose = halfSpaceShape::poseOf(points[k], normals[k]);
+        dem.addBody(w, true);
+    }
+    std::mt19937 g(4);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const auto small = std::make_shared<sphereShape>(0.0008);
+    const auto large = std::make_shared<sphereShape>(0.0012);
+    for (int i = 0; i < 64; ++i)
+    {
+        rigidBody b("s" + std::to_string(i), i % 3 ? small : large, 2500);
+        b.pose = bodyPose
+        (
+            vec3(0.0015 + 0.003*(i % 4), 0.0015 + 0.003*((i/4) % 4), 0.0015 + 0.003*(i/16))
+          + 0.0002*vec3(u(g), u(g), 0),
+            quat::Identity()
+        );
+        b.velocity = 0.2*vec3(u(g), u(g), u(g));
+        dem.addBody(b);
+    }
+    const int steps = 1500;
+    long checked = 0;
+    for (int n = 0; n < steps; ++n)
+    {
+        dem.step(s.deltaT);
+        std::set<std::pair<int, int>> found;
+        for (const contactRecord& c : dem.contacts()) found.insert({c.a, c.b});
+        const auto& B = dem.bodies();
+        for (int i = 5; i < int(B.size()); ++i)
+        {
+            const auto& si = static_cast<const sphereShape&>(*B[i].geometry);
+            for (int j = i + 1; j < int(B.size()); ++j)
+            {
+                const auto& sj = static_cast<const sphereShape&>(*B[j].geometry);
+                const double gap =
+                    (B[i].pose.position() - B[j].pose.position()).norm() - si.radius() - sj.radius();
+                if (gap < -1e-12*si.radius())
+                {
+                    ++checked;
+                    ASSERT_TRUE(found.count({i, j})) << "step " << n << ": " << i << " " << j;
+                }
+            }
+        }
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(dem.work().broadPhaseBuilds, 2);
+    EXPECT_LT(dem.work().broadPhaseBuilds, steps/5);
+    std::cout << "overlapping pairs checked " << checked << ", neighbour list built "
+              << dem.work().broadPhaseBuilds << " times in " << steps << " steps" << std::endl;
 }

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <map>
+#include <tuple>
 
 using namespace immersedDEM;
 
@@ -129,12 +130,20 @@ Eigen::Vector3i readLocks(const dictionary& d, const word& key)
 }
 
 
+//- The surfaces read so far, by file, scale and self-intersection check:
+//  bodies of one surface share it (one search structure, curvature and
+//  set of mass properties; each body holds only its pose)
+using surfaceCache =
+    std::map<std::tuple<std::string, double, bool>, std::shared_ptr<const triangleMeshShape>>;
+
+
 rigidBody readBody
 (
     const word& name,
     const dictionary& d,
     const fileName& surfaceDir,
-    const std::vector<contactMaterial>& materials
+    const std::vector<contactMaterial>& materials,
+    surfaceCache& surfaces
 )
 {
     const word shapeType = immersedDEMChecks::oneOf(d, "shape", {"sphere", "triangleMesh"});
@@ -157,17 +166,20 @@ rigidBody readBody
         immersedDEMChecks::allowOnly(d, allowed);
         const fileName file = surfaceDir/d.get<fileName>("file");
         const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+        const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
+        std::shared_ptr<const triangleMeshShape>& shared =
+            surfaces[std::make_tuple(std::string(file), double(scale), selfCheck)];
         try
         {
-            auto s = triangleMeshShape::fromFile
-            (
-                file, scale, d.getOrDefault<bool>("checkSelfIntersection", true)
-            );
-            for (const std::string& w : s->warnings())
+            if (!shared)
             {
-                WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
+                shared = triangleMeshShape::fromFile(file, scale, selfCheck);
+                for (const std::string& w : shared->warnings())
+                {
+                    WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
+                }
             }
-            geometry = std::move(s);
+            geometry = shared;
         }
         catch (const coreError& err)
         {
@@ -447,10 +459,11 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
         const auto it = lines.find(path);
         return it == lines.end() ? label(-1) : it->second;
     };
+    surfaceCache surfaces;
     for (const entry& e : bodies)
     {
         const dictionary& d = immersedDEMChecks::subDictEntry(bodies, e, "a body's description");
-        rigidBody b = readBody(e.keyword(), d, surfaceDir, materials);
+        rigidBody b = readBody(e.keyword(), d, surfaceDir, materials, surfaces);
         largest = std::max(largest, 2*b.geometry->boundingRadius());
         try
         {

@@ -219,9 +219,24 @@ bool pairFilter::separated
         ++counters_.passed;
         return false;
     }
+    // A plane and a sphere: the exact gap costs less than a record
+    const bool planeA = sB && dynamic_cast<const halfSpaceShape*>(&A);
+    const bool planeB = sA && dynamic_cast<const halfSpaceShape*>(&B);
+    if (planeA || planeB)
+    {
+        const double g = planeA ? planeGap(pA, B, pB) : planeGap(pB, A, pA);
+        if (g > reach_)
+        {
+            ++counters_.rejectedBySpheres;
+            return true;
+        }
+        ++counters_.passed;
+        return false;
+    }
 
     record& r = records_[key(a, b)];
-    const bool known = r.stamp != 0;
+    // A record of other shapes (a body given a new shape) is void
+    const bool known = r.stamp != 0 && r.A == &A && r.B == &B;
     r.stamp = stamp_;
     if (known && r.gap > reach_)
     {
@@ -244,6 +259,8 @@ bool pairFilter::separated
     const double cap = reach_ + std::max(reach_, 0.25*std::min(RA, RB));
     r.pA = pA;
     r.pB = pB;
+    r.A = &A;
+    r.B = &B;
     r.gap = gapLowerBound(A, pA, B, pB, reach_, cap);
     r.touching = false;
     if (r.gap > reach_)
