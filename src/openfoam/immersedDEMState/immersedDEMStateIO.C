@@ -65,6 +65,12 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             os.writeEntry("angularVelocity", v(b.angularVelocity));
             fluidLoad::fields(b.fluid, fluidLoadWriter{os});
             coupling_->writeBody(os, i);
+            // The loads of the last step, for the first output row of a
+            // continued run (the DEM computes them again before its step)
+            os.writeEntry("contactForce", v(b.contactForce));
+            os.writeEntry("contactTorque", v(b.contactTorque));
+            os.writeEntry("externalForce", v(b.externalForce));
+            os.writeEntry("externalTorque", v(b.externalTorque));
             os.endBlock();
         }
         os  << decrIndent << token::END_BLOCK << nl << nl;
@@ -102,9 +108,51 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
 
 bool Foam::immersedDEMState::readRestart()
 {
-    const fileName file = restartFile(mesh_.time().timePath());
-    if (!isFile(file))
+    const Time& runTime = mesh_.time();
+    const fileName timePath = runTime.timePath();
+    const fileName file = restartFile(timePath);
+    const bool found = isFile(file);
+
+    if (!properties_.getOrDefault<bool>("restart", true))
     {
+        Info<< "immersedDEM: restart no in " << properties_.objectPath()
+            << ": the bodies start afresh from it at time " << runTime.timeName();
+        if (returnReduce(found, orOp<bool>()))
+        {
+            Info<< " (the state in " << file << " is not read)";
+        }
+        Info<< endl;
+        return false;
+    }
+
+    if (!returnReduce(found, andOp<bool>()))
+    {
+        // A folder a run wrote (OpenFOAM's uniform/time is there) without
+        // the bodies' state: the run stopped between the field writes and
+        // the state's (the function object writes it after the solver's
+        // fields), or the state was removed. Starting the bodies from
+        // constant/immersedDEMProperties there would put them back where
+        // they were at the start while the fluid goes on.
+        const bool some = returnReduce(found, orOp<bool>());
+        const bool written = returnReduce(isFile(timePath/"uniform"/"time"), orOp<bool>());
+        if (some || written)
+        {
+            FatalIOErrorInFunction(properties_)
+                << "Restart from the time folder " << timePath
+                << ": uniform/immersedDEM/state is missing"
+                << (some ? " on some processors" : "")
+                << " (the bodies' poses, velocities, fluid loads and contact"
+                << " histories)." << nl
+                << "The run that wrote this folder stopped before the"
+                << " immersedDEM state was written (it is written after the"
+                << " fields), or the file was removed." << nl
+                << "Restart from an earlier time that has it (remove "
+                << timePath.name() << " or set startTime), or put 'restart no;'"
+                << " in " << properties_.objectPath() << " to start the bodies"
+                << " afresh from that file at time " << runTime.timeName() << nl
+                << exit(FatalIOError);
+        }
+        // A first start (no state, a folder no run wrote)
         return false;
     }
     Info<< "immersedDEM: restarting from " << file << endl;
@@ -157,6 +205,13 @@ bool Foam::immersedDEMState::readRestart()
         b.angularVelocity = c(d.get<vector>("angularVelocity"));
         fluidLoad::fields(b.fluid, fluidLoadReader{d});
         coupling_->readBody(d, i);
+        // The loads of the step before (absent from older states): the
+        // first output row carries them; the DEM recomputes them anyway
+        vector F;
+        if (d.readIfPresent("contactForce", F)) b.contactForce = c(F);
+        if (d.readIfPresent("contactTorque", F)) b.contactTorque = c(F);
+        if (d.readIfPresent("externalForce", F)) b.externalForce = c(F);
+        if (d.readIfPresent("externalTorque", F)) b.externalTorque = c(F);
     }
 
     std::map<std::pair<int, int>, std::vector<contactHistory>> histories;

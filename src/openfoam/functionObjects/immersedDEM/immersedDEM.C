@@ -57,29 +57,25 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
         outside_.setSize(n, false);
         reportedCourant_.setSize(n, 1);
     }
-    const boundBox& meshBox = mesh_.bounds();
-    const scalarField& V = mesh_.V();
 
-    // Each body's centre and the size of the cell there (GREAT: outside
-    // the mesh or a wall), one reduction for all bodies
-    List<vector> centre(n, Zero);
+    // The size of the smallest cell each body covers (the cells its
+    // projection set: the cost follows the bodies); GREAT where none
+    const immersedBoundaryProjection& projection = state_.projection();
+    const labelList& bodyOf = projection.bodyOf();
+    const scalarField& V = mesh_.V();
     List<scalar> h(n, GREAT);
-    for (label i = 0; i < n; ++i)
+    for (const label celli : projection.touched())
     {
-        const ::immersedDEM::vec3& p = bodies[i].pose.position();
-        centre[i] = vector(p.x(), p.y(), p.z());
-        if (!state_.dem().isWall(i) && deltaT > 0)
+        const label bi = bodyOf[celli];
+        if (bi >= 0 && bi < n)
         {
-            const label celli = mesh_.findCell(centre[i]);
-            if (celli >= 0)
-            {
-                h[i] = cbrt(V[celli]);
-            }
+            h[bi] = min(h[bi], cbrt(V[celli]));
         }
     }
     Pstream::listCombineGather(h, minEqOp<scalar>());
     Pstream::listCombineScatter(h);
 
+    const List<scalar>& projectedVolume = projection.projectedVolume();
     for (label i = 0; i < n; ++i)
     {
         const ::immersedDEM::rigidBody& b = bodies[i];
@@ -87,28 +83,30 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
         {
             continue;
         }
-        const vector& x = centre[i];
-        const scalar r = b.geometry->boundingRadius();
+        const ::immersedDEM::vec3& p = b.pose.position();
+        const vector x(p.x(), p.y(), p.z());
 
-        // Outside: the body's box misses the mesh's
-        const boundBox bodyBox(x - vector(r, r, r), x + vector(r, r, r));
-        const bool out = !meshBox.overlaps(bodyBox);
+        // Outside: (next to) nothing of it projected on the mesh
+        const bool out =
+            i < projectedVolume.size()
+         && projectedVolume[i] < 1e-6*b.geometry->volume();
         if (out && !outside_[i])
         {
             WarningInFunction
                 << "Function object " << name() << ": body '" << b.name.c_str()
                 << "' left the mesh at time " << time_.timeName()
-                << " (centre " << x << ", mesh bounds " << meshBox
+                << " (centre " << x << ", mesh bounds " << mesh_.bounds()
                 << "): the fluid no longer sees it; it continues in the DEM"
                 << endl;
         }
         outside_[i] = out;
-        if (out || h[i] >= GREAT)
+        if (out || h[i] >= GREAT || !(deltaT > 0))
         {
             continue;
         }
 
-        // Body Courant number against the cell at its centre
+        // Body Courant number against the smallest cell it covers
+        const scalar r = b.geometry->boundingRadius();
         const scalar speed = b.velocity.norm() + b.angularVelocity.norm()*r;
         const scalar Co = speed*deltaT/h[i];
         if (Co > reportedCourant_[i])
@@ -117,7 +115,7 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
                 << "Function object " << name() << ", time " << time_.timeName()
                 << ": body '" << b.name.c_str() << "' moves more than a cell per"
                 << " CFD step: speed " << speed << " m/s (|v| + |omega| r),"
-                << " cell size " << h[i] << " m at its centre, CFD step "
+                << " cell size " << h[i] << " m (the smallest it covers), CFD step "
                 << deltaT << " s: body Courant number " << Co
                 << ". The fluid cannot follow; reduce deltaT (or use"
                 << " adjustTimeStep with a smaller maxCo)" << endl;
