@@ -395,6 +395,7 @@ class octreeWalk
     const double h_;
     const int maxLevel_;
     const long maxCells_;
+    const bool facets_;
 
     cellIndex baseIndex(const vec3& lo) const
     {
@@ -419,10 +420,11 @@ public:
     octreeWalk
     (
         const shape& A, const bodyPose& pA, const shape& B, const bodyPose& pB,
-        double h, int L, long maxCells
+        double h, int L, long maxCells, bool facets
     )
     :
-        A_(A), pA_(pA), B_(B), pB_(pB), h_(h), maxLevel_(L), maxCells_(maxCells)
+        A_(A), pA_(pA), B_(B), pB_(pB), h_(h), maxLevel_(L), maxCells_(maxCells),
+        facets_(facets)
     {}
 
     // level < 0: coarser than h, above the base cells; sum is then null.
@@ -580,8 +582,8 @@ public:
         // one smooth sheet (an edge, a corner, a thin part), its triangles
         // there instead, exactly.
         const double r = 0.5*std::sqrt(3.0)*s*(1 + 1e-9);
-        const bool facetedA = !inA && facetedNear(A_, pA_, c, r, worldA_);
-        const bool facetedB = !inB && facetedNear(B_, pB_, c, r, worldB_);
+        const bool facetedA = facets_ && !inA && facetedNear(A_, pA_, c, r, worldA_);
+        const bool facetedB = facets_ && !inB && facetedNear(B_, pB_, c, r, worldB_);
 
         // The column axis: the one the two surfaces face most where they
         // are most nearly parallel (across a thin sliver, which columns
@@ -658,7 +660,10 @@ public:
                     for (size_t k = 0; k < crossT_.size(); ++k)
                     {
                         const double t = crossT_[k];
-                        if (std::abs(t) <= 0.5*s && insideB.contains(t))
+                        // (-s/2, s/2] with the tangent planes' round-off
+                        // margin: a face on a leaf's face counts once
+                        const double tol = 1e-9*s;
+                        if (t > -0.5*s + tol && t <= 0.5*s + tol && insideB.contains(t))
                         {
                             const auto& tri = fA->triangle(crossTri_[k]);
                             areaA += (ds*ds/std::abs(tri.nAx))*tri.normal;
@@ -830,7 +835,7 @@ contactGeometry virtualMeshOverlap::evaluate
     }
     const double H = h*double(1L << m);
 
-    octreeWalk walk(A, pA, B, pB, h, L, settings.maxCells);
+    octreeWalk walk(A, pA, B, pB, h, L, settings.maxCells, settings.facetedEdges);
     const double noBound = std::numeric_limits<double>::max();
     const overlapTools::cellRange roots = overlapTools::latticeRange(box, H);
     long nRoots = 1;
@@ -930,7 +935,9 @@ contactGeometry virtualMeshOverlap::evaluate
         contactRegion cr;
         cr.volume = r.volume;
         cr.point = r.first/r.volume;
-        cr.normal = regionNormal(r.edgePoints, r.areaVector, centreLine);
+        cr.normal = settings.areaVectorNormal && r.areaVector.norm() > 0
+            ? vec3(r.areaVector.normalized())
+            : regionNormal(r.edgePoints, r.areaVector, centreLine);
         cr.area = r.areaVector.norm();
         g.regions.push_back(cr);
     }
