@@ -132,7 +132,16 @@ int main(int argc, char *argv[])
     Info<< "\nStarting time loop\n" << endl;
     while (runTime.loop())
     {
-        const label nSteps = dem->advance(runTime.deltaTValue());
+        label nSteps = 0;
+        try
+        {
+            nSteps = dem->advance(runTime.deltaTValue());
+        }
+        catch (const immersedDEM::coreError& err)
+        {
+            FatalErrorInFunction
+                << "Time " << runTime.timeName() << ": " << err.what() << exit(FatalError);
+        }
         scalar maxVolume = 0;
         for (const auto& c : dem->contacts())
         {

@@ -80,7 +80,7 @@ demSettings readSettings(const dictionary& top)
     {
         immersedDEMChecks::allowOnly
         (
-            *c, {"method", "level", "cellSize", "law", "characteristicLength"}
+            *c, {"method", "level", "cellSize", "law", "characteristicLength", "normal"}
         );
         wordList methods;
         for (const std::string& m : overlapEngine::types()) methods.append(word(m));
@@ -98,6 +98,12 @@ demSettings readSettings(const dictionary& top)
         s.contactLaw = immersedDEMChecks::oneOfOrDefault(*c, "law", laws, "volume");
         s.characteristicLength =
             immersedDEMChecks::positiveOrDefault(*c, "characteristicLength", 0);
+        wordList normals;
+        normals.append(word("fittedPlane"));
+        normals.append(word("areaVector"));
+        s.overlap.areaVectorNormal =
+            immersedDEMChecks::oneOfOrDefault(*c, "normal", normals, "fittedPlane")
+         == "areaVector";
     }
     if (const dictionary* t = top.findDict("time"))
     {

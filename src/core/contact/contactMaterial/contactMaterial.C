@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace immersedDEM
 {
@@ -11,14 +12,15 @@ void contactMaterial::check() const
 {
     auto bad = [&](const std::string& what, double v, const std::string& range)
     {
-        throw coreError
-        (
-            "Material '" + name + "': " + what + " is " + std::to_string(v)
-          + "; it must be " + range
-        );
+        std::ostringstream msg;
+        msg << "Material '" << name << "': " << what << " is " << v
+            << "; it must be " << range;
+        throw coreError(msg.str());
     };
-    if (!(youngsModulus > 0 && std::isfinite(youngsModulus)))
-        bad("youngsModulus", youngsModulus, "> 0");
+    // Stiffer than any solid (diamond: 1.2e12 Pa) is a typing error, and
+    // would make the automatic DEM step vanish
+    if (!(youngsModulus > 0 && youngsModulus <= maxYoungsModulus))
+        bad("youngsModulus", youngsModulus, "in (0, 1e13] Pa");
     if (!(poissonsRatio >= 0 && poissonsRatio <= 0.5))
         bad("poissonsRatio", poissonsRatio, "in [0, 0.5]");
     if (!(restitution > 0 && restitution <= 1))

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
+#include <sstream>
 
 namespace immersedDEM
 {
@@ -436,7 +438,21 @@ double demSolver::timeStep() const
     {
         return std::numeric_limits<double>::max();
     }
-    return tc/settings_.stepsPerContact;
+    // No body moves more than maxTravel of the smallest body's size
+    // relative to another in a step, whatever the contact law says: the
+    // fastest relative approach (at most 2 max|v|) cannot carry a body
+    // through a wall or another body between two contact evaluations
+    double dMin = std::numeric_limits<double>::max();
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (!isWall_[i]) dMin = std::min(dMin, 2*bodies_[i].equivalentRadius());
+    }
+    double dt = tc/settings_.stepsPerContact;
+    if (vMax > 0 && dMin < std::numeric_limits<double>::max())
+    {
+        dt = std::min(dt, maxTravel*dMin/(2*vMax));
+    }
+    return dt;
 }
 
 
@@ -477,8 +493,52 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
         return 0;
     }
     const double dtMax = timeStep();
-    const int n = std::max(1, int(std::ceil(T/dtMax - 1e-9)));
+    const double steps = std::ceil(T/dtMax - 1e-9);
+    if (!(dtMax > 0) || !(steps <= maxStepsPerAdvance))
+    {
+        // The step must be representable and its count an int: a stiff or
+        // light material (youngsModulus, density) makes it vanish
+        std::ostringstream msg;
+        msg.precision(3);
+        msg << "The DEM time step " << dtMax << " s would take " << steps
+            << " steps to cover " << T << " s (at most " << maxStepsPerAdvance
+            << " are allowed): the contact time of the bodies is too short."
+            << " Check youngsModulus of the materials (";
+        for (size_t k = 0; k < materials_.size(); ++k)
+        {
+            msg << (k ? ", " : "") << materials_[k].name << ": "
+                << materials_[k].youngsModulus << " Pa";
+        }
+        msg << ") and density of the bodies (";
+        bool first = true;
+        for (size_t i = 0; i < bodies_.size(); ++i)
+        {
+            if (!bodies_[i].dynamic()) continue;
+            msg << (first ? "" : ", ") << bodies_[i].name << ": "
+                << bodies_[i].density << " kg/m3";
+            first = false;
+        }
+        msg << "), or deltaT";
+        throw coreError(msg.str());
+    }
+    const int n = std::max(1, int(steps));
     const double dt = T/n;
+    // A step of the user's (deltaT) may let a fast body travel far
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        const rigidBody& b = bodies_[i];
+        if (isWall_[i] || warnedTravel_.count(i)) continue;
+        const double d = 2*b.equivalentRadius();
+        if (b.velocity.norm()*dt > maxTravel*d)
+        {
+            std::cerr
+                << "\n--> immersedDEM warning: body '" << b.name << "' moves "
+                << b.velocity.norm()*dt/d << " of its size (" << d << " m) in one DEM"
+                << " step of " << dt << " s (more than " << maxTravel << "):"
+                << " contacts may be missed or too deep. Reduce deltaT\n";
+            warnedTravel_.insert(i);
+        }
+    }
     for (int i = 0; i < n; ++i)
     {
         step(dt);

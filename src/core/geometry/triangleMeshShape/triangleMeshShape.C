@@ -156,4 +156,25 @@ double triangleMeshShape::signedDistance(const vec3& p) const
     return closest(p).distance;
 }
 
+bool triangleMeshShape::facetsNear
+(
+    const vec3& p, double r, std::vector<surfaceFacet>& facets, size_t maxFacets
+) const
+{
+    std::vector<int> faces;
+    if (!distance_->tree().facesWithin(p, r, faces, maxFacets))
+    {
+        return false;
+    }
+    for (const int f : faces)
+    {
+        const triFace& t = body_.faces[f];
+        facets.push_back
+        (
+            {body_.points[t[0]], body_.points[t[1]], body_.points[t[2]], distance_->faceNormal(f)}
+        );
+    }
+    return true;
+}
+
 } // End namespace immersedDEM

@@ -142,4 +142,25 @@ surfacePoint wallMeshShape::closest(const vec3& p, double bound) const
     return distance_.closest(p, b*b);
 }
 
+bool wallMeshShape::facetsNear
+(
+    const vec3& p, double r, std::vector<surfaceFacet>& facets, size_t maxFacets
+) const
+{
+    std::vector<int> faces;
+    if (!distance_.tree().facesWithin(p, r, faces, maxFacets))
+    {
+        return false;
+    }
+    for (const int f : faces)
+    {
+        const triFace& t = surface_.faces[f];
+        facets.push_back
+        (
+            {surface_.points[t[0]], surface_.points[t[1]], surface_.points[t[2]], distance_.faceNormal(f)}
+        );
+    }
+    return true;
+}
+
 } // End namespace immersedDEM

@@ -3,11 +3,15 @@
 #include "sphereOverlap.H"
 #include "sphereShape.H"
 #include "wallMeshShape.H"
+#include "surfaceDistance.H"
+#include "coreError.H"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <memory>
 
 namespace immersedDEM
 {
@@ -26,6 +30,8 @@ struct baseCellSum
     //  over it (|.| is the contact area, its direction the mean normal)
     vec3 areaVector = vec3::Zero();
     std::vector<vec3> edgePoints;
+    //- The leaves holding overlap
+    axisAlignedBox box;
 };
 
 //- phi(t) = alpha t^2 + beta t + gamma along a column x + t e_ax: the
@@ -78,8 +84,9 @@ public:
 //  quadratic is <= 0
 struct columnSet
 {
+    static constexpr int maxPieces = 8;
     int size = 1;
-    double lo[4], hi[4];
+    double lo[maxPieces], hi[maxPieces];
 
     columnSet(double l, double h) { lo[0] = l; hi[0] = h; }
 
@@ -88,7 +95,7 @@ struct columnSet
         for (int k = 0; k < size; ++k)
         {
             const double a = std::max(lo[k], l), b = std::min(hi[k], h);
-            if (b > a && out.size < 4)
+            if (b > a && out.size < maxPieces)
             {
                 out.lo[out.size] = a;
                 out.hi[out.size] = b;
@@ -149,6 +156,234 @@ struct columnSet
         }
         *this = out;
     }
+
+    //- Keep the part inside the union of the n pieces [l_k, h_k]
+    void keepPieces(const double* l, const double* h, int n)
+    {
+        columnSet out(0, 0);
+        out.size = 0;
+        for (int k = 0; k < n; ++k) keep(l[k], h[k], out);
+        *this = out;
+    }
+
+    bool contains(double t) const
+    {
+        for (int k = 0; k < size; ++k)
+        {
+            if (t >= lo[k] && t <= hi[k]) return true;
+        }
+        return false;
+    }
+};
+
+
+//- A faceted surface (a mesh) in a leaf, exactly: its triangles near the
+//  leaf, each crossing a column where the column's point falls in the
+//  triangle's shadow on the plane across the columns. The shadows of a
+//  sheet's triangles tile that plane once: a point on a shared edge or
+//  corner belongs to one triangle only (the top-left rule on the edge
+//  function, evaluated with the edge's ends in a fixed order, so the two
+//  triangles sharing an edge compute the same number). Used where the
+//  surface in the leaf is not one smooth sheet: at an edge or corner of a
+//  faceted body, where one tangent plane would bevel the edge (a wedge of
+//  volume in every leaf along the rim of a face-on-face contact, whatever
+//  its depth), and where two sheets of a thin part are within the leaf.
+class leafFacets
+{
+    struct projected
+    {
+        double p[3][2];     //!< corners (u, w) relative to the leaf centre, CCW
+        double t0, tu, tw;  //!< the plane: t = t0 + tu a + tw b
+        vec3 normal;
+        double nAx;
+    };
+
+    std::vector<projected> tris_;
+    vec3 c_;
+    int ax_, u_, w_;
+    double chord2_;     //!< squared radius of the ball holding every crossing
+    bool centreInside_;
+
+    static double edgeFunction(const double* P, const double* Q, double a, double b)
+    {
+        // The same number, negated, for the edge walked the other way
+        const bool swap = P[0] > Q[0] || (P[0] == Q[0] && P[1] > Q[1]);
+        const double* X = swap ? Q : P;
+        const double* Y = swap ? P : Q;
+        const double e = (Y[0] - X[0])*(b - X[1]) - (Y[1] - X[1])*(a - X[0]);
+        return swap ? -e : e;
+    }
+
+    static bool covers(const projected& t, double a, double b)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const double* P = t.p[k];
+            const double* Q = t.p[(k + 1) % 3];
+            const double e = edgeFunction(P, Q, a, b);
+            if (e < 0) return false;
+            if (e == 0)
+            {
+                // Top-left: of the two directions of an edge exactly one
+                const double du = Q[0] - P[0], dw = Q[1] - P[1];
+                if (!(dw < 0 || (dw == 0 && du < 0))) return false;
+            }
+        }
+        return true;
+    }
+
+public:
+
+    //- The world triangles near a leaf of centre c, columns along ax;
+    //  radius: that of the ball the triangles were gathered in;
+    //  centreInside: the side of the body the centre is on
+    leafFacets
+    (
+        const std::vector<surfaceFacet>& world, const vec3& c, int ax, int u, int w,
+        double radius, bool centreInside
+    )
+    :
+        c_(c), ax_(ax), u_(u), w_(w), chord2_(radius*radius),
+        centreInside_(centreInside)
+    {
+        tris_.reserve(world.size());
+        for (const surfaceFacet& f : world)
+        {
+            const double nAx = f.normal[ax];
+            if (nAx == 0) continue;     // parallel to the columns: no shadow
+            projected t;
+            const vec3* x[3] = {&f.a, &f.b, &f.c};
+            for (int k = 0; k < 3; ++k)
+            {
+                t.p[k][0] = (*x[k])[u] - c[u];
+                t.p[k][1] = (*x[k])[w] - c[w];
+            }
+            const double area2 =
+                (t.p[1][0] - t.p[0][0])*(t.p[2][1] - t.p[0][1])
+              - (t.p[1][1] - t.p[0][1])*(t.p[2][0] - t.p[0][0]);
+            if (area2 == 0) continue;
+            if (area2 < 0)
+            {
+                std::swap(t.p[1][0], t.p[2][0]);
+                std::swap(t.p[1][1], t.p[2][1]);
+            }
+            // n.(x - a) = 0 along x = c + a e_u + b e_w + t e_ax
+            t.t0 = f.normal.dot(f.a - c)/nAx;
+            t.tu = -f.normal[u]/nAx;
+            t.tw = -f.normal[w]/nAx;
+            t.normal = f.normal;
+            t.nAx = nAx;
+            tris_.push_back(t);
+        }
+        std::sort
+        (
+            tris_.begin(), tris_.end(),
+            [](const projected& x, const projected& y){ return x.t0 < y.t0; }
+        );
+        worldFacets_ = &world;
+    }
+
+    //- The pieces of the column at (a, b) inside the body, within
+    //  [-s/2, s/2]; the crossings (t, triangle) in crossT, crossTri.
+    //  Returns the number of pieces.
+    int column
+    (
+        double a, double b, double halfS, double* lo, double* hi, int maxPieces,
+        std::vector<double>& crossT, std::vector<int>& crossTri
+    ) const
+    {
+        crossT.clear();
+        crossTri.clear();
+        const double chord2 = chord2_ - a*a - b*b;
+        for (size_t i = 0; i < tris_.size(); ++i)
+        {
+            const projected& t = tris_[i];
+            if (!covers(t, a, b)) continue;
+            const double tc = t.t0 + t.tu*a + t.tw*b;
+            // Only crossings inside the ball: there the list is complete
+            if (tc*tc > chord2) continue;
+            crossT.push_back(tc);
+            crossTri.push_back(int(i));
+        }
+        // In order along the column (few: insertion sort)
+        for (size_t i = 1; i < crossT.size(); ++i)
+        {
+            for (size_t j = i; j > 0 && crossT[j] < crossT[j - 1]; --j)
+            {
+                std::swap(crossT[j], crossT[j - 1]);
+                std::swap(crossTri[j], crossTri[j - 1]);
+            }
+        }
+        bool in;
+        if (crossT.empty())
+        {
+            in = sideAt(a, b);
+        }
+        else
+        {
+            // Before the first crossing: inside if it is an exit
+            in = tris_[crossTri[0]].nAx > 0;
+        }
+        int n = 0;
+        double start = -halfS;
+        for (size_t i = 0; i <= crossT.size(); ++i)
+        {
+            const double tEnd = i < crossT.size() ? crossT[i] : halfS;
+            if (in)
+            {
+                const double l = std::max(start, -halfS), h = std::min(tEnd, halfS);
+                if (h > l && n < maxPieces)
+                {
+                    lo[n] = l;
+                    hi[n] = h;
+                    ++n;
+                }
+            }
+            if (i < crossT.size())
+            {
+                // After a crossing: outside if it is an exit
+                in = !(tris_[crossTri[i]].nAx > 0);
+                start = crossT[i];
+            }
+        }
+        return n;
+    }
+
+    const projected& triangle(int i) const { return tris_[i]; }
+
+private:
+
+    const std::vector<surfaceFacet>* worldFacets_ = nullptr;
+
+    //- The side of the body at the column's point at t = 0, which no
+    //  triangle crosses within the leaf: the last crossing of the segment
+    //  from the leaf centre to it decides, else the centre's side
+    bool sideAt(double a, double b) const
+    {
+        vec3 v = vec3::Zero();
+        v[u_] = a;
+        v[w_] = b;
+        double best = -1;
+        bool in = centreInside_;
+        for (const surfaceFacet& f : *worldFacets_)
+        {
+            const double nv = f.normal.dot(v);
+            if (nv == 0) continue;
+            const double tau = f.normal.dot(f.a - c_)/nv;
+            if (!(tau > 0 && tau <= 1) || tau < best) continue;
+            // Inside the triangle (barycentric, closed)
+            const vec3 x = c_ + tau*v;
+            const vec3 e0 = f.b - f.a, e1 = f.c - f.a, d = x - f.a;
+            const vec3 nn = e0.cross(e1);
+            const double n2 = nn.squaredNorm();
+            const double l1 = d.cross(e1).dot(nn)/n2;
+            const double l2 = e0.cross(d).dot(nn)/n2;
+            if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+            best = tau;
+            in = nv < 0;
+        }
+        return in;
+    }
 };
 
 class octreeWalk
@@ -159,6 +394,8 @@ class octreeWalk
     const bodyPose& pB_;
     const double h_;
     const int maxLevel_;
+    const long maxCells_;
+    const bool facets_;
 
     cellIndex baseIndex(const vec3& lo) const
     {
@@ -173,13 +410,21 @@ public:
     //- Sums per base cell (size h), by lattice index
     std::map<cellIndex, baseCellSum> sums;
 
+    //- Thrown when the walk would take more than maxCells cells
+    struct tooManyCells {};
+
+    //- Cells taken so far: visited, and base cells filled from a coarser
+    //  cell inside both bodies
+    long cells = 0;
+
     octreeWalk
     (
         const shape& A, const bodyPose& pA, const shape& B, const bodyPose& pB,
-        double h, int L
+        double h, int L, long maxCells, bool facets
     )
     :
-        A_(A), pA_(pA), B_(B), pB_(pB), h_(h), maxLevel_(L)
+        A_(A), pA_(pA), B_(B), pB_(pB), h_(h), maxLevel_(L), maxCells_(maxCells),
+        facets_(facets)
     {}
 
     // level < 0: coarser than h, above the base cells; sum is then null.
@@ -192,6 +437,10 @@ public:
         double boundA, double boundB, baseCellSum* sum
     )
     {
+        if (++cells > maxCells_)
+        {
+            throw tooManyCells();
+        }
         if (level == 0)
         {
             sum = &sums[baseIndex(lo)];
@@ -222,10 +471,17 @@ public:
                 const double v = s*s*s;
                 sum->volume += v;
                 sum->first += v*c;
+                sum->box.add(lo);
+                sum->box.add(lo + vec3::Constant(s));
                 return;
             }
             // A coarse cell inside both: its base cells, for the regions
             const long n = 1L << (-level);
+            cells += n*n*n;
+            if (cells > maxCells_)
+            {
+                throw tooManyCells();
+            }
             for (long i = 0; i < n; ++i)
             {
                 for (long j = 0; j < n; ++j)
@@ -237,6 +493,8 @@ public:
                         const double v = h_*h_*h_;
                         b.volume += v;
                         b.first += v*(blo + vec3::Constant(0.5*h_));
+                        b.box.add(blo);
+                        b.box.add(blo + vec3::Constant(h_));
                     }
                 }
             }
@@ -263,6 +521,50 @@ public:
         leaf(c, s, inA, a, inB, b, *sum);
     }
 
+    //- The triangles of sp's body near a leaf (world frame) when the
+    //  surface there is not one smooth sheet: an edge or corner sharper
+    //  than the crease angle, or a second sheet (a thin part), within the
+    //  leaf's ball. Empty: the closest point's model holds in the leaf.
+    bool facetedNear
+    (
+        const shape& S, const bodyPose& pS, const vec3& c, double r,
+        std::vector<surfaceFacet>& world
+    )
+    {
+        world.clear();
+        local_.clear();
+        if (!S.facetsNear(pS.toBody(c), r, local_, 256) || local_.size() < 2)
+        {
+            return false;
+        }
+        const double cosCrease = std::cos(surfaceDistance::creaseAngleDegrees*M_PI/180);
+        bool smooth = true;
+        for (size_t i = 0; i < local_.size() && smooth; ++i)
+        {
+            for (size_t j = i + 1; j < local_.size(); ++j)
+            {
+                if (local_[i].normal.dot(local_[j].normal) < cosCrease)
+                {
+                    smooth = false;
+                    break;
+                }
+            }
+        }
+        if (smooth)
+        {
+            return false;
+        }
+        world.reserve(local_.size());
+        for (const surfaceFacet& f : local_)
+        {
+            world.push_back
+            (
+                {pS.toWorld(f.a), pS.toWorld(f.b), pS.toWorld(f.c), pS.vectorToWorld(f.normal)}
+            );
+        }
+        return true;
+    }
+
     void leaf
     (
         const vec3& c, double s,
@@ -276,19 +578,61 @@ public:
         // face most, at n x n column centres: exact for a plane facing that
         // axis (no quantisation where an overlap is a few leaves thick), and
         // free of the tangent plane's O(kappa s^2) excess where both
-        // surfaces are convex
-        const vec3 nMax = (inA ? vec3::Zero() : vec3(a.normal.cwiseAbs()))
-            .cwiseMax(inB ? vec3::Zero() : vec3(b.normal.cwiseAbs()));
+        // surfaces are convex. Where a mesh's surface in the leaf is not
+        // one smooth sheet (an edge, a corner, a thin part), its triangles
+        // there instead, exactly.
+        const double r = 0.5*std::sqrt(3.0)*s*(1 + 1e-9);
+        const bool facetedA = facets_ && !inA && facetedNear(A_, pA_, c, r, worldA_);
+        const bool facetedB = facets_ && !inB && facetedNear(B_, pB_, c, r, worldB_);
+
+        // The column axis: the one the two surfaces face most where they
+        // are most nearly parallel (across a thin sliver, which columns
+        // along it integrate exactly at any thickness); a faceted surface
+        // offers each of its triangles' normals
         int ax = 0;
-        nMax.maxCoeff(&ax);
+        {
+            normalsA_.clear();
+            normalsB_.clear();
+            if (facetedA) for (const surfaceFacet& f : worldA_) normalsA_.push_back(f.normal);
+            else if (!inA) normalsA_.push_back(a.normal);
+            if (facetedB) for (const surfaceFacet& f : worldB_) normalsB_.push_back(f.normal);
+            else if (!inB) normalsB_.push_back(b.normal);
+            const std::vector<vec3>& one = normalsA_.empty() ? normalsB_ : normalsA_;
+            const std::vector<vec3>& other = normalsA_.empty() ? normalsA_ : normalsB_;
+            vec3 facing = vec3::Zero();
+            double best = -1;
+            for (const vec3& na : one)
+            {
+                if (other.empty())
+                {
+                    facing = facing.cwiseMax(na.cwiseAbs());
+                    continue;
+                }
+                for (const vec3& nb : other)
+                {
+                    const double g = std::abs(na.dot(nb));
+                    if (g > best + 1e-12)
+                    {
+                        best = g;
+                        facing = na.cwiseAbs().cwiseMax(nb.cwiseAbs());
+                    }
+                }
+            }
+            facing.maxCoeff(&ax);
+        }
         const int u = (ax + 1) % 3, w = (ax + 2) % 3;
+        std::unique_ptr<leafFacets> fA, fB;
+        if (facetedA) fA.reset(new leafFacets(worldA_, c, ax, u, w, r, a.distance < 0));
+        if (facetedB) fB.reset(new leafFacets(worldB_, c, ax, u, w, r, b.distance < 0));
 
         const int n = virtualMeshOverlap::nSub;
         const double ds = s/n;
         double volume = 0;
         vec3 first = vec3::Zero();
         vec3 areaA = vec3::Zero();
+        bool areaFromFacets = false;
         const leafSurface surfA(a, c, ax, u, w), surfB(b, c, ax, u, w);
+        double lo[columnSet::maxPieces], hi[columnSet::maxPieces];
         for (int i = 0; i < n; ++i)
         {
             const double oi = (i + 0.5 - 0.5*n)*ds;
@@ -299,15 +643,46 @@ public:
                 x[u] += oi;
                 x[w] += oj;
                 columnSet inside(-0.5*s, 0.5*s);
-                if (!inA) inside.clip(surfA.column(oi, oj));
-                if (!inB) inside.clip(surfB.column(oi, oj));
+                if (fB)
+                {
+                    const int m = fB->column(oi, oj, 0.5*s, lo, hi, columnSet::maxPieces, crossT_, crossTri_);
+                    inside.keepPieces(lo, hi, m);
+                }
+                else if (!inB)
+                {
+                    inside.clip(surfB.column(oi, oj));
+                }
+                if (fA)
+                {
+                    // A's surface inside B (before A clips): the area vector
+                    const columnSet insideB(inside);
+                    const int m = fA->column(oi, oj, 0.5*s, lo, hi, columnSet::maxPieces, crossT_, crossTri_);
+                    for (size_t k = 0; k < crossT_.size(); ++k)
+                    {
+                        const double t = crossT_[k];
+                        // (-s/2, s/2] with the tangent planes' round-off
+                        // margin: a face on a leaf's face counts once
+                        const double tol = 1e-9*s;
+                        if (t > -0.5*s + tol && t <= 0.5*s + tol && insideB.contains(t))
+                        {
+                            const auto& tri = fA->triangle(crossTri_[k]);
+                            areaA += (ds*ds/std::abs(tri.nAx))*tri.normal;
+                        }
+                    }
+                    areaFromFacets = true;
+                    inside.keepPieces(lo, hi, m);
+                }
+                else if (!inA)
+                {
+                    inside.clip(surfA.column(oi, oj));
+                }
                 for (int k = 0; k < inside.size; ++k)
                 {
-                    const double lo = inside.lo[k], hi = inside.hi[k];
-                    const double v = (hi - lo)*ds*ds;
+                    const double l = inside.lo[k], h = inside.hi[k];
+                    const double v = (h - l)*ds*ds;
                     volume += v;
                     vec3 xm = x;
-                    xm[ax] += 0.5*(lo + hi);
+                    xm[ax] += 0.5*(l + h);
                     first += v*xm;
                 }
             }
@@ -319,7 +694,7 @@ public:
 
         // A's tangent plane inside B: its outward area vector, from where
         // the plane crosses n x n columns along the axis it faces most
-        if (!inA)
+        if (!inA && !areaFromFacets)
         {
             int axA = 0;
             a.normal.cwiseAbs().maxCoeff(&axA);
@@ -347,6 +722,8 @@ public:
         sum.volume += volume;
         sum.first += first;
         sum.areaVector += areaA;
+        sum.box.add(c - vec3::Constant(0.5*s));
+        sum.box.add(c + vec3::Constant(0.5*s));
 
         if (inA || inB)
         {
@@ -366,6 +743,14 @@ public:
             }
         }
     }
+
+private:
+
+    // Work space of the leaves
+    std::vector<surfaceFacet> local_, worldA_, worldB_;
+    std::vector<vec3> normalsA_, normalsB_;
+    std::vector<double> crossT_;
+    std::vector<int> crossTri_;
 };
 
 
@@ -450,16 +835,40 @@ contactGeometry virtualMeshOverlap::evaluate
     }
     const double H = h*double(1L << m);
 
-    octreeWalk walk(A, pA, B, pB, h, L);
+    octreeWalk walk(A, pA, B, pB, h, L, settings.maxCells, settings.facetedEdges);
     const double noBound = std::numeric_limits<double>::max();
-    overlapTools::forEachLatticeCell
-    (
-        overlapTools::latticeRange(box, H), H,
-        [&](const cellIndex&, const vec3& corner)
-        {
-            walk.visit(corner, H, -m, false, false, noBound, noBound, nullptr);
-        }
-    );
+    const overlapTools::cellRange roots = overlapTools::latticeRange(box, H);
+    long nRoots = 1;
+    for (int d = 0; d < 3; ++d) nRoots *= roots.hi[d] - roots.lo[d] + 1;
+    long rootsDone = 0;
+    try
+    {
+        overlapTools::forEachLatticeCell
+        (
+            roots, H,
+            [&](const cellIndex&, const vec3& corner)
+            {
+                walk.visit(corner, H, -m, false, false, noBound, noBound, nullptr);
+                ++rootsDone;
+            }
+        );
+    }
+    catch (const octreeWalk::tooManyCells&)
+    {
+        // The cells the whole walk would take, from the share of the roots
+        // walked (the one stopped counting as half)
+        const double needed =
+            double(walk.cells)*double(nRoots)/(double(rootsDone) + 0.5);
+        std::ostringstream msg;
+        msg.precision(3);
+        msg << type() << ": the contact would need about " << needed
+            << " cells of the virtual mesh, more than the limit of "
+            << double(settings.maxCells) << " per contact: cellSize " << h
+            << " m at level " << L << " is too fine for an overlap region of "
+            << extent << " m (leaves of " << h/double(1L << L)
+            << " m). Use a larger cellSize or a lower level";
+        throw coreError(msg.str());
+    }
     std::map<cellIndex, baseCellSum> sums;
     for (auto& e : walk.sums)
     {
@@ -478,15 +887,45 @@ contactGeometry virtualMeshOverlap::evaluate
     // Regions: base cells joined across faces
     overlapTools::cellRegions sets(sums, overlapTools::cellJoin::faces);
 
+    std::map<int, baseCellSum> cellSets;
+    for (const auto& e : sums)
+    {
+        baseCellSum& r = cellSets[sets.label(e.first)];
+        const baseCellSum& s = e.second;
+        r.volume += s.volume;
+        r.box.add(s.box);
+    }
+
+    // Sets of cells closer than a base cell (the boxes of their leaves
+    // holding overlap) are one contact: a contact is not split by the
+    // lattice, e.g. where it narrows to a corner two cells share
+    std::vector<int> labels;
+    for (const auto& e : cellSets) labels.push_back(e.first);
+    overlapTools::disjointSets near(int(labels.size()));
+    for (size_t i = 0; i < labels.size(); ++i)
+    {
+        const axisAlignedBox& bi = cellSets[labels[i]].box;
+        for (size_t j = i + 1; j < labels.size(); ++j)
+        {
+            const axisAlignedBox& bj = cellSets[labels[j]].box;
+            const vec3 gap =
+                (bj.min - bi.max).cwiseMax(bi.min - bj.max).cwiseMax(vec3::Zero());
+            if (gap.norm() < h) near.join(int(i), int(j));
+        }
+    }
+    std::map<int, int> contactOf;
+    for (size_t i = 0; i < labels.size(); ++i) contactOf[labels[i]] = near.find(int(i));
+
     std::map<int, baseCellSum> regions;
     for (const auto& e : sums)
     {
-        baseCellSum& r = regions[sets.label(e.first)];
+        baseCellSum& r = regions[contactOf[sets.label(e.first)]];
         const baseCellSum& s = e.second;
         r.volume += s.volume;
         r.first += s.first;
         r.areaVector += s.areaVector;
         r.edgePoints.insert(r.edgePoints.end(), s.edgePoints.begin(), s.edgePoints.end());
+        r.box.add(s.box);
     }
 
     const vec3 centreLine = pB.position() - pA.position();
@@ -496,7 +935,9 @@ contactGeometry virtualMeshOverlap::evaluate
         contactRegion cr;
         cr.volume = r.volume;
         cr.point = r.first/r.volume;
-        cr.normal = regionNormal(r.edgePoints, r.areaVector, centreLine);
+        cr.normal = settings.areaVectorNormal && r.areaVector.norm() > 0
+            ? vec3(r.areaVector.normalized())
+            : regionNormal(r.edgePoints, r.areaVector, centreLine);
         cr.area = r.areaVector.norm();
         g.regions.push_back(cr);
     }
