@@ -7,17 +7,25 @@ Group
 
 Description
     Runs the DEM of constant/immersedDEMProperties with no fluid: the same
-    bodies, walls, contact models and outputs as a coupled case (gravity
-    from constant/g if present). The case's system/controlDict gives the
-    time: startTime, endTime, deltaT (the output interval of the tables;
-    the DEM takes its own sub-steps within it) and the write controls (the
-    VTK of the bodies).
+    bodies, insertions, walls, contact models and outputs as a coupled case
+    (gravity from constant/g if present), so a coupled case's own dictionary
+    runs as it is: its mesh is read when it has one (walls of type patch),
+    and the function objects of its controlDict (the coupled immersedDEM)
+    are not run (-withFunctionObjects runs them). The case's
+    system/controlDict gives the time: startTime, endTime, deltaT (the
+    output interval of the tables; the DEM takes its own sub-steps within
+    it) and the write controls (the VTK of the bodies).
+
+    Log: the DEM step and what set it; progress (simulated time, DEM steps
+    per second, estimated time left) every -progress seconds of wall time
+    (default 5); at the end the seconds per part and the largest overlap
+    and speed seen.
 
     Outputs, in postProcessing/immersedDEMSolve/<startTime>/: bodies.dat,
     contacts.dat and VTK/bodies_<time>.vtk with VTK/bodies.vtk.series.
 
 Usage
-    immersedDEMSolve [-case dir]
+    immersedDEMSolve [-case dir] [-progress seconds] [-withFunctionObjects]
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
@@ -27,6 +35,8 @@ Usage
 #include "dimensionedVector.H"
 #include "dimensionSets.H"
 #include "OSspecific.H"
+#include "polyMesh.H"
+#include "Switch.H"
 
 #include "immersedDEMReader.H"
 #include "demOutput.H"
@@ -34,6 +44,8 @@ Usage
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
+#include <memory>
 
 using namespace Foam;
 
@@ -44,6 +56,14 @@ int main(int argc, char *argv[])
         "Run the bodies of constant/immersedDEMProperties with no fluid"
     );
     argList::noParallel();
+    // The coupled function object of a coupled case's controlDict needs
+    // the fluid: not run here unless asked for
+    argList::noFunctionObjects(true);
+    argList::addOption
+    (
+        "progress", "seconds",
+        "Wall-clock interval of the progress lines (default 5)"
+    );
 
     #include "setRootCase.H"
     #include "createTime.H"
@@ -92,12 +112,50 @@ int main(int argc, char *argv[])
         dimensionedVector(dimAcceleration, Zero)
     );
 
+    using wallClock = std::chrono::steady_clock;
+    auto seconds = [](wallClock::time_point a, wallClock::time_point b)
+    {
+        return std::chrono::duration<double>(b - a).count();
+    };
+    const auto wallStart = wallClock::now();
+    const scalar progressInterval = args.getOrDefault<scalar>("progress", 5);
+    if (!(progressInterval > 0))
+    {
+        FatalErrorInFunction
+            << "Option -progress " << progressInterval << ": it must be > 0 seconds"
+            << exit(FatalError);
+    }
+
+    // The case's mesh, if it has one: walls of type patch take its faces
+    std::unique_ptr<polyMesh> mesh;
+    if
+    (
+        isFile(runTime.path()/runTime.constant()/polyMesh::meshSubDir/"faces")
+     || isDir(runTime.path()/runTime.timeName()/polyMesh::meshSubDir)
+    )
+    {
+        Info<< "Reading the mesh for walls of type patch" << endl;
+        mesh.reset
+        (
+            new polyMesh
+            (
+                IOobject
+                (
+                    polyMesh::defaultRegion, runTime.timeName(), runTime,
+                    IOobject::MUST_READ
+                )
+            )
+        );
+    }
+
     Info<< "Reading " << properties.objectPath() << endl;
     auto dem = immersedDEMReader::read
     (
-        properties, runTime.globalPath()/runTime.constant()/"triSurface", g.value()
+        properties, runTime.globalPath()/runTime.constant()/"triSurface", g.value(),
+        mesh.get()
     );
     dem->setTime(runTime.value());
+    const scalar setupSeconds = seconds(wallStart, wallClock::now());
 
     const fileName outDir =
         runTime.globalPath()/"postProcessing"/"immersedDEMSolve"/runTime.timeName();
@@ -129,28 +187,96 @@ int main(int argc, char *argv[])
             << " reduce deltaT" << nl << exit(FatalIOError);
     }
 
+    scalar outputSeconds = seconds(wallStart, wallClock::now()) - setupSeconds;
+    scalar demSeconds = 0;
+
+    // Extremes seen, for the summary
+    scalar maxVolume = 0, maxVolumeTime = 0, maxVolumeFraction = 0;
+    word maxVolumePair("none");
+    scalar maxSpeed = 0, maxSpeedTime = 0;
+    word maxSpeedBody("none");
+    auto track = [&]()
+    {
+        for (const auto& c : dem->contacts())
+        {
+            if (c.region.volume > maxVolume)
+            {
+                const auto& A = dem->bodies()[c.a];
+                const auto& B = dem->bodies()[c.b];
+                maxVolume = c.region.volume;
+                maxVolumeTime = dem->time();
+                maxVolumePair = word(A.name + "-" + B.name);
+                const scalar V = dem->isWall(c.a)
+                    ? B.geometry->volume()
+                    : std::min(A.geometry->volume(), B.geometry->volume());
+                maxVolumeFraction = maxVolume/V;
+            }
+        }
+        for (size_t i = 0; i < dem->bodies().size(); ++i)
+        {
+            if (dem->isWall(int(i))) continue;
+            const scalar v = dem->bodies()[i].velocity.norm();
+            if (v > maxSpeed)
+            {
+                maxSpeed = v;
+                maxSpeedTime = dem->time();
+                maxSpeedBody = word(dem->bodies()[i].name);
+            }
+        }
+    };
+    track();
+
+    const scalar t0 = runTime.value();
+    const scalar tEnd = runTime.endTime().value();
+    auto lastReport = wallClock::now();
+    const auto loopStart = lastReport;
+    long stepsAtReport = 0, steps = 0;
+    auto progress = [&]()
+    {
+        track();
+        ++steps;
+        const auto now = wallClock::now();
+        const scalar since = seconds(lastReport, now);
+        if (since < progressInterval) return;
+        const scalar t = dem->time();
+        const scalar elapsed = seconds(loopStart, now);
+        const scalar rate = (t - t0)/max(elapsed, VSMALL);
+        Info<< "Progress: t = " << t << " s of " << tEnd << " ("
+            << label(100*(t - t0)/max(tEnd - t0, VSMALL)) << "%), "
+            << label((steps - stepsAtReport)/since) << " DEM steps/s, "
+            << dem->bodies().size() << " bodies and walls, "
+            << dem->contacts().size() << " contacts, ETA "
+            << label((tEnd - t)/max(rate, VSMALL)) << " s (wall "
+            << label(elapsed) << " s)" << endl;
+        lastReport = now;
+        stepsAtReport = steps;
+    };
+
     Info<< "\nStarting time loop\n" << endl;
     while (runTime.loop())
     {
         label nSteps = 0;
+        auto a = wallClock::now();
         try
         {
-            nSteps = dem->advance(runTime.deltaTValue());
+            nSteps = dem->advance(runTime.deltaTValue(), progress);
         }
         catch (const immersedDEM::coreError& err)
         {
             FatalErrorInFunction
                 << "Time " << runTime.timeName() << ": " << err.what() << exit(FatalError);
         }
-        scalar maxVolume = 0;
+        auto b = wallClock::now();
+        demSeconds += seconds(a, b);
+        scalar largest = 0;
         for (const auto& c : dem->contacts())
         {
-            maxVolume = std::max(maxVolume, c.region.volume);
+            largest = std::max(largest, c.region.volume);
         }
         Info<< "Time = " << runTime.timeName()
             << "  DEM steps " << nSteps
             << ", contacts " << dem->contacts().size()
-            << ", largest overlap " << maxVolume << " m3"
+            << ", largest overlap " << largest << " m3"
             << ", kinetic energy " << dem->kineticEnergy() << " J" << endl;
 
         out->writeBodies(runTime.value(), *dem);
@@ -159,11 +285,29 @@ int main(int argc, char *argv[])
         {
             out->writeVTK(runTime.value(), *dem);
         }
+        outputSeconds += seconds(b, wallClock::now());
     }
 
     const auto& w = dem->work();
+    const scalar total = seconds(wallStart, wallClock::now());
+    const scalar simulated = runTime.value() - t0;
     Info<< "\nDEM steps " << w.steps << ", pair evaluations " << w.pairEvaluations
         << ", queries " << w.queries << ", contact time " << w.contactSeconds << " s"
+        << nl << nl
+        << "Summary (wall-clock seconds)" << nl
+        << "    reading, mesh and insertion  " << setupSeconds << nl
+        << "    contacts (search, geometry, law)  " << w.contactSeconds << nl
+        << "    integration and loads        " << demSeconds - w.contactSeconds << nl
+        << "    output                       " << outputSeconds << nl
+        << "    total                        " << total << nl
+        << "    simulated " << simulated << " s in " << w.steps << " DEM steps: "
+        << (total > 0 ? w.steps/total : 0) << " steps/s, "
+        << (simulated > 0 ? total/simulated : 0) << " wall s per simulated s" << nl
+        << "    largest overlap " << maxVolume << " m3 ("
+        << 100*maxVolumeFraction << "% of the smaller body), " << maxVolumePair
+        << " at t = " << maxVolumeTime << nl
+        << "    largest speed " << maxSpeed << " m/s, " << maxSpeedBody
+        << " at t = " << maxSpeedTime << nl
         << nl << "ExecutionTime = " << runTime.elapsedCpuTime() << " s"
         << nl << "End\n" << endl;
 

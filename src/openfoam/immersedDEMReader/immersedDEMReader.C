@@ -1,5 +1,7 @@
 #include "immersedDEMReader.H"
 #include "dictionaryChecks.H"
+#include "immersedDEMInsertion.H"
+#include "timeStepExplanation.H"
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
 #include "halfSpaceShape.H"
@@ -434,11 +436,18 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     const std::map<std::string, label> lines = immersedDEMChecks::noDuplicateKeywords
     (
         dict.name(),
-        {{"bodies", "bodies"}, {"materials", "materials"}, {"walls", "walls"}}
+        {
+            {"bodies", "bodies"}, {"materials", "materials"}, {"walls", "walls"},
+            {"templates", "templates"}, {"insertion", "insertion"}
+        }
     );
     immersedDEMChecks::allowOnly
     (
-        dict, {"materials", "contact", "time", "bodies", "walls", "restart"}
+        dict,
+        {
+            "materials", "contact", "time", "bodies", "walls", "restart",
+            "templates", "insertion"
+        }
     );
     // restart (yes/no) is used by immersedDEMState: checked here
     (void)dict.getOrDefault<bool>("restart", true);
@@ -458,7 +467,11 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
             << "In " << dict.name() << ": " << err.what() << nl << exit(FatalIOError);
     }
 
-    const dictionary& bodies = dict.subDict("bodies");
+    // Listed bodies; with an insertion the list may be absent
+    const dictionary emptyBodies;
+    const dictionary& bodies =
+        dict.found("insertion") && !dict.found("bodies")
+      ? emptyBodies : dict.subDict("bodies");
     double largest = 0;
     auto lineOf = [&lines](const std::string& path)
     {
@@ -481,6 +494,9 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
                 << "In " << d.name() << ": " << err.what() << nl << exit(FatalIOError);
         }
     }
+
+    const auto templates = immersedDEMInsertion::readTemplates(dict, surfaceDir, materials);
+    largest = std::max(largest, immersedDEMInsertion::largestDiameter(dict, templates));
 
     if (const dictionary* walls = dict.findDict("walls"))
     {
@@ -506,5 +522,11 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
             );
         }
     }
+
+    // After the walls: inserted bodies are placed apart from them
+    immersedDEMInsertion::insert(dict, surfaceDir, templates, *dem);
+
+    // The step at the start, and why (it follows the speeds in the run)
+    Info<< "    " << timeStepExplanation::of(*dem).text(*dem).c_str() << endl;
     return dem;
 }
