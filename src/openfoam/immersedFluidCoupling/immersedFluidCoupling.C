@@ -4,8 +4,15 @@
 #include "immersedForcing.H"
 #include "parallelSum.H"
 #include "clockTime.H"
+#include "syncTools.H"
+#include "surfaceFields.H"
 
 using namespace immersedDEM;
+
+namespace Foam
+{
+    defineTypeNameAndDebug(immersedFluidCoupling, 0);
+}
 
 
 namespace
@@ -92,9 +99,110 @@ void Foam::immersedFluidCoupling::fluidSums
         momentum[i] += m;
         angularMomentum[i] += r ^ m;
     }
+    if (deltaT > 0)
+    {
+        sealedFacePressure(projection, dem, U, deltaT, penalty, penaltyMoment);
+    }
     for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
     {
         immersedDEMParallel::sumOverProcessors(*l);
+    }
+}
+
+
+void Foam::immersedFluidCoupling::sealedFacePressure
+(
+    const immersedBoundaryProjection& projection,
+    const demSolver& dem,
+    const volVectorField& U,
+    const scalar deltaT,
+    List<vector>& penalty,
+    List<vector>& penaltyMoment
+) const
+{
+    const fvMesh& mesh = U.mesh();
+    const volScalarField* pp = mesh.findObject<volScalarField>(pName_);
+    if (!pp) return;
+    const volScalarField& p = *pp;
+
+    // The forced cells: K deltaT >= 1, the cell follows its body more than
+    // the fluid (sharp: centre inside; diffuse: lambda >= 1/2). Their
+    // pressure is decoupled from the fluid's (diffusivity 1/(A + K))
+    labelList forced(mesh.nCells(), -1);
+    const labelList& bodyOf = projection.bodyOf();
+    for (const label celli : projection.touched())
+    {
+        if
+        (
+            bodyOf[celli] >= 0
+         && projection.cellCoefficient(celli, deltaT)*deltaT >= 1
+        )
+        {
+            forced[celli] = bodyOf[celli];
+        }
+    }
+    labelList nbrForced;
+    syncTools::swapBoundaryCellList(mesh, forced, nbrForced);
+
+    const labelUList& own = mesh.owner();
+    const labelUList& nei = mesh.neighbour();
+    const vectorField& Sf = mesh.Sf();
+    const vectorField& Cf = mesh.Cf();
+    const scalarField& w = mesh.weights();
+    const label nInternal = mesh.nInternalFaces();
+    const polyBoundaryMesh& patches = mesh.boundaryMesh();
+    const cellList& cells = mesh.cells();
+
+    // A face between forced cells of two bodies, or between a body's
+    // forced cell and a wall (a boundary that fixes the velocity), is a
+    // film of no thickness: its pressure is whatever makes the two rigid
+    // velocities meet there (of the order of K times their difference),
+    // not a fluid stress. Its force is taken out of the reaction, the part
+    // of the pressure gradient that the penalty balances in those cells
+    // (Gauss: sum over a body's cells of grad p V = sum over the faces
+    // around them of p_f S_f). What the film carries is the contact's.
+    auto remove = [&](const label i, const vector& S, const scalar pf, const point& x)
+    {
+        const vector dF = pf*S;
+        const vector r = x - v(dem.bodies()[i].pose.position());
+        penalty[i] += dF;
+        penaltyMoment[i] += r ^ dF;
+    };
+    for (const label celli : projection.touched())
+    {
+        const label i = forced[celli];
+        if (i < 0) continue;
+        for (const label facei : cells[celli])
+        {
+            if (facei < nInternal)
+            {
+                const bool isOwner = own[facei] == celli;
+                const label n = isOwner ? nei[facei] : own[facei];
+                if (forced[n] < 0 || forced[n] == i) continue;
+                const scalar pf =
+                    w[facei]*p[own[facei]] + (1 - w[facei])*p[nei[facei]];
+                remove(i, isOwner ? Sf[facei] : -Sf[facei], pf, Cf[facei]);
+                continue;
+            }
+            const label patchi = patches.whichPatch(facei);
+            const label pfi = facei - patches[patchi].start();
+            const fvPatchScalarField& pb = p.boundaryField()[patchi];
+            const vector& S = mesh.Sf().boundaryField()[patchi][pfi];
+            const point& x = mesh.Cf().boundaryField()[patchi][pfi];
+            if (patches[patchi].coupled())
+            {
+                const label n = nbrForced[facei - nInternal];
+                if (n < 0 || n == i) continue;
+                const scalar wf = mesh.weights().boundaryField()[patchi][pfi];
+                const scalar pf =
+                    wf*p[celli] + (1 - wf)*pb.patchNeighbourField()()[pfi];
+                remove(i, S, pf, x);
+            }
+            else if (U.boundaryField()[patchi].fixesValue())
+            {
+                remove(i, S, pb[pfi], x);
+            }
+        }
     }
 }
 
@@ -129,6 +237,14 @@ void Foam::immersedFluidCoupling::fluidLoads
             rho, c(PM[i]), c(L[i]), c(innerAngularMomentum_[i]), deltaT
         );
         // The added moment of inertia from the mean principal moment
+        if (debug)
+        {
+            Info<< "immersedFluidCoupling loads " << word(b.name)
+                << " t " << U.time().value()
+                << " penalty " << rho*P[i]
+                << " innerRate " << rho*(M[i] - innerMomentum_[i])/deltaT
+                << " v " << v(b.velocity) << endl;
+        }
         const scalar Ia = Ca*rho/b.density*b.inertia().sum()/3;
         b.fluid = fluidLoad::stabilised
         (
