@@ -153,14 +153,17 @@ void Foam::immersedFluidCoupling::sealedFacePressure
     const polyBoundaryMesh& patches = mesh.boundaryMesh();
     const cellList& cells = mesh.cells();
 
-    // A face between forced cells of two bodies, or between a body's
-    // forced cell and a wall (a boundary that fixes the velocity), is a
-    // film of no thickness: its pressure is whatever makes the two rigid
+    // A face between forced cells of two bodies is a film of no
+    // thickness: its pressure is whatever makes the two rigid
     // velocities meet there (of the order of K times their difference),
     // not a fluid stress. Its force is taken out of the reaction, the part
     // of the pressure gradient that the penalty balances in those cells
     // (Gauss: sum over a body's cells of grad p V = sum over the faces
     // around them of p_f S_f). What the film carries is the contact's.
+    // Faces between a body's forced cell and a wall patch are left as
+    // they are: taking their pressure out lifted a sphere resting on the
+    // bottom off it (case test restart), so the cure for walls is still
+    // to be found (issue 15).
     auto remove = [&](const label i, const vector& S, const scalar pf, const point& x)
     {
         const vector dF = pf*S;
@@ -197,10 +200,6 @@ void Foam::immersedFluidCoupling::sealedFacePressure
                 const scalar pf =
                     wf*p[celli] + (1 - wf)*pb.patchNeighbourField()()[pfi];
                 remove(i, S, pf, x);
-            }
-            else if (U.boundaryField()[patchi].fixesValue())
-            {
-                remove(i, S, pb[pfi], x);
             }
         }
     }
