@@ -93,6 +93,15 @@ double boxDistSqr(const vec3& loA, const vec3& hiA, const vec3& cB, const vec3& 
 } // End anonymous namespace
 
 
+double triangleBVH::segmentDistance
+(
+    const vec3& p, const vec3& q, const vec3& u, const vec3& v
+)
+{
+    return std::sqrt(segmentDistSqr(p, q, u, v));
+}
+
+
 double triangleBVH::triangleDistance
 (
     const std::array<vec3, 3>& a, const std::array<vec3, 3>& b

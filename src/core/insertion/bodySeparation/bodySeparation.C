@@ -76,46 +76,7 @@ double bodySeparation::segmentDistance
     const vec3& p1, const vec3& q1, const vec3& p2, const vec3& q2
 )
 {
-    // Closest points p1 + s d1, p2 + t d2 with s, t in [0, 1]: minimise
-    // over s for the clamped t and back (the quadratic is convex)
-    const vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-    const double tiny = 1e-300;
-    double s = 0, t = 0;
-    if (a <= tiny && e <= tiny)
-    {
-        return r.norm();
-    }
-    if (a <= tiny)
-    {
-        t = std::clamp(f/e, 0.0, 1.0);
-    }
-    else
-    {
-        const double c = d1.dot(r);
-        if (e <= tiny)
-        {
-            s = std::clamp(-c/a, 0.0, 1.0);
-        }
-        else
-        {
-            const double b = d1.dot(d2);
-            const double den = a*e - b*b;
-            s = den > 1e-14*a*e ? std::clamp((b*f - c*e)/den, 0.0, 1.0) : 0.0;
-            t = (b*s + f)/e;
-            if (t < 0)
-            {
-                t = 0;
-                s = std::clamp(-c/a, 0.0, 1.0);
-            }
-            else if (t > 1)
-            {
-                t = 1;
-                s = std::clamp((b - c)/a, 0.0, 1.0);
-            }
-        }
-    }
-    return ((p1 + s*d1) - (p2 + t*d2)).norm();
+    return triangleBVH::segmentDistance(p1, q1, p2, q2);
 }
 
 
