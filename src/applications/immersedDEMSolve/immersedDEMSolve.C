@@ -155,6 +155,7 @@ int main(int argc, char *argv[])
         mesh.get()
     );
     dem->setTime(runTime.value());
+    immersedDEMReader::initialOverlaps(*dem, properties.objectPath());
     const scalar setupSeconds = seconds(wallStart, wallClock::now());
 
     const fileName outDir =

@@ -2,6 +2,7 @@
 #include "dictionaryChecks.H"
 #include "immersedDEMInsertion.H"
 #include "timeStepExplanation.H"
+#include "initialOverlaps.H"
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
 #include "halfSpaceShape.H"
@@ -82,7 +83,11 @@ demSettings readSettings(const dictionary& top)
     {
         immersedDEMChecks::allowOnly
         (
-            *c, {"method", "level", "cellSize", "law", "characteristicLength", "normal"}
+            *c,
+            {
+                "method", "level", "cellSize", "law", "characteristicLength", "normal",
+                "initialOverlaps"
+            }
         );
         wordList methods;
         for (const std::string& m : overlapEngine::types()) methods.append(word(m));
@@ -106,6 +111,12 @@ demSettings readSettings(const dictionary& top)
         s.overlap.areaVectorNormal =
             immersedDEMChecks::oneOfOrDefault(*c, "normal", normals, "fittedPlane")
          == "areaVector";
+        wordList overlapActions;
+        overlapActions.append(word("keep"));
+        overlapActions.append(word("separate"));
+        s.separateInitialOverlaps =
+            immersedDEMChecks::oneOfOrDefault(*c, "initialOverlaps", overlapActions, "separate")
+         == "separate";
     }
     if (const dictionary* t = top.findDict("time"))
     {
@@ -529,4 +540,45 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     // The step at the start, and why (it follows the speeds in the run)
     Info<< "    " << timeStepExplanation::of(*dem).text(*dem).c_str() << endl;
     return dem;
+}
+
+
+void Foam::immersedDEMReader::initialOverlaps
+(
+    immersedDEM::demSolver& dem,
+    const fileName& dictName
+)
+{
+    namespace io = immersedDEM::initialOverlaps;
+    const std::vector<immersedDEM::initialOverlap> found = io::find(dem);
+    if (found.empty())
+    {
+        Info<< "    No overlaps at the start" << endl;
+        return;
+    }
+    if (!dem.settings().separateInitialOverlaps)
+    {
+        WarningInFunction
+            << found.size() << " pairs overlap at the start (" << dictName
+            << "); the contacts push them apart in the first steps:" << nl
+            << io::text(dem, found).c_str()
+            << "    (contact/initialOverlaps keep; 'separate', the default,"
+            << " moves them apart before the first step)" << endl;
+        return;
+    }
+    Info<< "    " << found.size() << " pairs overlap at the start:" << nl
+        << io::text(dem, found).c_str();
+    const immersedDEM::overlapSeparation s = io::separate(dem);
+    Info<< "    initialOverlaps separate: " << s.bodiesMoved << " bodies moved apart"
+        << " in " << s.iterations << " iterations, the farthest by "
+        << s.largestMove << " m" << endl;
+    if (!s.remaining.empty())
+    {
+        WarningInFunction
+            << s.remaining.size() << " pairs of " << dictName
+            << " still overlap after " << s.iterations
+            << " separation iterations (walls or fixed bodies into each"
+            << " other, or a body held between two walls):" << nl
+            << io::text(dem, s.remaining).c_str() << endl;
+    }
 }

@@ -59,6 +59,10 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     coupling_.reset(new immersedFluidCoupling(*dem_));
 
     restarted_ = readRestart();
+    if (!restarted_)
+    {
+        immersedDEMReader::initialOverlaps(*dem_, properties_.objectPath());
+    }
 
     const label nCells = project();
     Info<< "immersedDEM: projected on " << returnReduce(nCells, sumOp<label>())

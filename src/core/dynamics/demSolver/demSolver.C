@@ -27,6 +27,13 @@ demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& 
     {
         m.check();
     }
+    for (const contactMaterial& a : materials_)
+    {
+        for (const contactMaterial& b : materials_)
+        {
+            pairMaterials_.push_back(pairMaterial::of(a, b));
+        }
+    }
     if (settings_.stepsPerContact < 10)
     {
         throw coreError
@@ -55,7 +62,7 @@ int demSolver::addBody(rigidBody b, bool wall)
     {
         throw coreError("Wall '" + b.name + "' must be fixed or prescribed");
     }
-    if (law_->needsSpheres() && !wall && !dynamic_cast<const sphereShape*>(b.geometry.get()))
+    if (law_->needsSpheres() && !wall && !shapeAs<sphereShape>(*b.geometry))
     {
         throw coreError
         (
@@ -230,12 +237,22 @@ bool demSolver::evaluatePair
         return false;
     }
 
+    // A lasting contact's map node moves from the last step's histories to
+    // the next step's, its old values read from a scratch copy: no
+    // allocation per contact and step
     const auto key = std::make_pair(ia, ib);
-    const auto old = history_.find(key);
-    std::vector<char> taken(old == history_.end() ? 0 : old->second.size(), 0);
-    std::vector<contactHistory>& hs = next[key];
+    auto node = history_.extract(key);
+    oldHistory_.clear();
+    if (node)
+    {
+        oldHistory_.swap(node.mapped());
+        node.mapped().clear();
+    }
+    std::vector<contactHistory>& hs =
+        node ? next.insert(std::move(node)).position->second : next[key];
+    taken_.assign(oldHistory_.size(), 0);
 
-    const pairMaterial pm = pairMaterial::of(materials_[A.material], materials_[B.material]);
+    const pairMaterial& pm = pairMaterialOf(A.material, B.material);
     const double mA = A.mass(), mB = B.mass();
     const double mEff =
         A.dynamic() && B.dynamic() ? mA*mB/(mA + mB) : (A.dynamic() ? mA : mB);
@@ -247,9 +264,9 @@ bool demSolver::evaluatePair
     double RHertz = Reff;
     if (law_->needsSpheres())
     {
-        const auto* sb = dynamic_cast<const sphereShape*>(B.geometry.get());
+        const auto* sb = shapeAs<sphereShape>(*B.geometry);
         depth = sb->radius() - A.geometry->signedDistance(A.pose, B.pose.position());
-        if (const auto* sa = dynamic_cast<const sphereShape*>(A.geometry.get()))
+        if (const auto* sa = shapeAs<sphereShape>(*A.geometry))
         {
             RHertz = sa->radius()*sb->radius()/(sa->radius() + sb->radius());
         }
@@ -263,15 +280,15 @@ bool demSolver::evaluatePair
     {
         // The history of the nearest region of the last step, if close
         contactHistory h;
-        if (old != history_.end())
+        if (!oldHistory_.empty())
         {
             const double reach = std::max(settings_.overlap.h, std::sqrt(std::max(r.area, 0.0)));
             int best = -1;
             double bestDist = reach;
-            for (size_t k = 0; k < old->second.size(); ++k)
+            for (size_t k = 0; k < oldHistory_.size(); ++k)
             {
-                const double d = (old->second[k].point - r.point).norm();
-                if (!taken[k] && d <= bestDist)
+                const double d = (oldHistory_[k].point - r.point).norm();
+                if (!taken_[k] && d <= bestDist)
                 {
                     best = int(k);
                     bestDist = d;
@@ -279,8 +296,8 @@ bool demSolver::evaluatePair
             }
             if (best >= 0)
             {
-                taken[best] = 1;
-                h = old->second[best];
+                taken_[best] = 1;
+                h = oldHistory_[best];
             }
         }
 
@@ -414,7 +431,7 @@ double demSolver::timeStep() const
         for (size_t k = 0; k < materials_.size(); ++k)
         {
             if (!present[k]) continue;
-            const pairMaterial pm = pairMaterial::of(materials_[b.material], materials_[k]);
+            const pairMaterial& pm = pairMaterialOf(b.material, int(k));
             // Against a like body (m*/2, R/2), and against a wall (m, R)
             for (const double f : {0.5, 1.0})
             {
@@ -426,7 +443,7 @@ double demSolver::timeStep() const
                 // A mesh may touch with a flat face: a linear spring of
                 // stiffness Y* A/l_c over its cross-section A ~ pi R^2,
                 // whose half period does not depend on the speed
-                if (!dynamic_cast<const sphereShape*>(b.geometry.get()))
+                if (!shapeAs<sphereShape>(*b.geometry))
                 {
                     const double k = pm.effectiveModulus*M_PI*R*R/lc;
                     tc = std::min(tc, M_PI*std::sqrt(f*m/k));

@@ -19,11 +19,11 @@ constexpr double unknown = -std::numeric_limits<double>::infinity();
 //- The triangles of a surface shape (body frame), or null
 const triangleBVH* trianglesOf(const shape& s)
 {
-    if (const auto* m = dynamic_cast<const triangleMeshShape*>(&s))
+    if (const auto* m = shapeAs<triangleMeshShape>(s))
     {
         return &m->distanceField().tree();
     }
-    if (const auto* w = dynamic_cast<const wallMeshShape*>(&s))
+    if (const auto* w = shapeAs<wallMeshShape>(s))
     {
         return &w->distanceField().tree();
     }
@@ -60,11 +60,11 @@ double planeGap(const bodyPose& pP, const shape& S, const bodyPose& pS)
 {
     const vec3 n = pP.vectorToWorld(vec3::UnitZ());
     const double h0 = n.dot(pS.position() - pP.position());
-    if (const auto* s = dynamic_cast<const sphereShape*>(&S))
+    if (const auto* s = shapeAs<sphereShape>(S))
     {
         return h0 - s->radius();
     }
-    if (const auto* m = dynamic_cast<const triangleMeshShape*>(&S))
+    if (const auto* m = shapeAs<triangleMeshShape>(S))
     {
         return h0 + m->distanceField().tree().minAlong(pS.vectorToBody(n));
     }
@@ -80,7 +80,7 @@ double sphereGap(const vec3& c, double r, const shape& S, const bodyPose& pS)
     {
         return d - r;
     }
-    if (const auto* w = dynamic_cast<const wallMeshShape*>(&S))
+    if (const auto* w = shapeAs<wallMeshShape>(S))
     {
         if (!wallSideClear(*w, pS, c, r, c))
         {
@@ -127,8 +127,8 @@ double pairFilter::gapLowerBound
     const double RA = A.boundingRadius(), RB = B.boundingRadius();
     const double spheres = (pA.position() - pB.position()).norm() - RA - RB;
 
-    const auto* sA = dynamic_cast<const sphereShape*>(&A);
-    const auto* sB = dynamic_cast<const sphereShape*>(&B);
+    const auto* sA = shapeAs<sphereShape>(A);
+    const auto* sB = shapeAs<sphereShape>(B);
     if (sA && sB)
     {
         return spheres;
@@ -138,11 +138,11 @@ double pairFilter::gapLowerBound
         return spheres;
     }
 
-    if (dynamic_cast<const halfSpaceShape*>(&A))
+    if (shapeAs<halfSpaceShape>(A))
     {
         return planeGap(pA, B, pB);
     }
-    if (dynamic_cast<const halfSpaceShape*>(&B))
+    if (shapeAs<halfSpaceShape>(B))
     {
         return planeGap(pB, A, pA);
     }
@@ -172,8 +172,8 @@ double pairFilter::gapLowerBound
     }
 
     // The surfaces are apart: neither solid inside the other
-    const auto* wA = dynamic_cast<const wallMeshShape*>(&A);
-    const auto* wB = dynamic_cast<const wallMeshShape*>(&B);
+    const auto* wA = shapeAs<wallMeshShape>(A);
+    const auto* wB = shapeAs<wallMeshShape>(B);
     const vec3 cornerA = pA.toWorld(tA->anyCorner());
     const vec3 cornerB = pB.toWorld(tB->anyCorner());
     if (wA && wB)
@@ -211,8 +211,8 @@ bool pairFilter::separated
         ++counters_.rejectedBySpheres;
         return true;
     }
-    const auto* sA = dynamic_cast<const sphereShape*>(&A);
-    const auto* sB = dynamic_cast<const sphereShape*>(&B);
+    const auto* sA = shapeAs<sphereShape>(A);
+    const auto* sB = shapeAs<sphereShape>(B);
     if (sA && sB)
     {
         // The spheres' gap is exact: nothing better to prove
@@ -220,8 +220,8 @@ bool pairFilter::separated
         return false;
     }
     // A plane and a sphere: the exact gap costs less than a record
-    const bool planeA = sB && dynamic_cast<const halfSpaceShape*>(&A);
-    const bool planeB = sA && dynamic_cast<const halfSpaceShape*>(&B);
+    const bool planeA = sB && shapeAs<halfSpaceShape>(A);
+    const bool planeB = sA && shapeAs<halfSpaceShape>(B);
     if (planeA || planeB)
     {
         const double g = planeA ? planeGap(pA, B, pB) : planeGap(pB, A, pA);

@@ -68,7 +68,7 @@ mat3 rigidBody::worldInertia() const
 }
 
 
-double rigidBody::equivalentRadius() const
+double rigidBody::sphereRadiusOfVolume() const
 {
     return std::cbrt(3*geometry->volume()/(4*M_PI));
 }

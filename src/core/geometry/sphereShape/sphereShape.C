@@ -9,6 +9,7 @@ namespace immersedDEM
 
 sphereShape::sphereShape(double R)
 :
+    shape(staticKind),
     R_(R)
 {
     if (!(std::isfinite(R) && R > 0))

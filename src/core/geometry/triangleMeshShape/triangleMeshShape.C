@@ -65,6 +65,7 @@ triangleMeshShape::triangleMeshShape
     bool checkSelfIntersection
 )
 :
+    shape(staticKind),
     name_(name)
 {
     warnings_ = closedSurfaceCheck::checkAndRepair(soup, name, checkSelfIntersection);

@@ -32,6 +32,7 @@ wallMeshShape::wallMeshShape
     double thickness
 )
 :
+    shape(staticKind),
     surface_(std::move(surface)),
     distance_(nonEmpty(surface_, name))
 {

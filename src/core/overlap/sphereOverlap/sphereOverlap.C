@@ -88,10 +88,10 @@ contactGeometry sphereOverlap::evaluate
     const overlapSettings&
 ) const
 {
-    const auto* a = dynamic_cast<const sphereShape*>(&A);
-    const auto* b = dynamic_cast<const sphereShape*>(&B);
-    const auto* wa = dynamic_cast<const halfSpaceShape*>(&A);
-    const auto* wb = dynamic_cast<const halfSpaceShape*>(&B);
+    const auto* a = shapeAs<sphereShape>(A);
+    const auto* b = shapeAs<sphereShape>(B);
+    const auto* wa = shapeAs<halfSpaceShape>(A);
+    const auto* wb = shapeAs<halfSpaceShape>(B);
     if (wa && b)
     {
         return cap(pA.position(), pA.vectorToWorld(vec3::UnitZ()), pB.position(), b->radius());
