@@ -462,6 +462,15 @@ void toSlab(demSolver& dem, const polyMesh& mesh, const dictionary& dict)
         if (dem.isWall(int(i))) continue;
         rigidBody& b = bodies[i];
         const word name(b.name);
+        if (b.geometry->type() != "triangleMesh" && !b.dynamic())
+        {
+            // A fixed or prescribed sphere: the fluid sees its section (a
+            // disk at the slab's cells); its mass plays no part
+            Info<< "    body " << name << ": a " << b.geometry->type().c_str()
+                << ", " << motionTypeName(b.motion).c_str() << ": kept as it"
+                << " is (the fluid sees its section in the slab)" << endl;
+            continue;
+        }
         if (b.geometry->type() != "triangleMesh")
         {
             FatalIOErrorInFunction(dict)
