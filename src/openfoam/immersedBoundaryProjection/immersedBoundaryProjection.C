@@ -10,6 +10,11 @@
 
 using namespace immersedDEM;
 
+namespace Foam
+{
+    defineTypeNameAndDebug(immersedBoundaryProjection, 0);
+}
+
 
 namespace
 {
@@ -48,6 +53,100 @@ Foam::immersedBoundaryProjection::immersedBoundaryProjection(const fvMesh& mesh)
 }
 
 
+Foam::scalar Foam::immersedBoundaryProjection::largestCellSize()
+{
+    if (!(largestCellSize_ > 0))
+    {
+        // The ring of fluid cells next to a body's centre-inside cells
+        // lies within one cell of its box
+        scalar h = 0;
+        for (const scalar Vc : mesh_.V()) h = max(h, cbrt(Vc));
+        largestCellSize_ = returnReduce(h, maxOp<scalar>());
+        // Split and graded hexahedra are not cubes
+        largestCellSize_ *= 2;
+    }
+    return largestCellSize_;
+}
+
+
+Foam::labelList Foam::immersedBoundaryProjection::bodiesToProject
+(
+    const demSolver& dem,
+    bool& all
+) const
+{
+    const auto& bodies = dem.bodies();
+    const size_t n = bodies.size();
+    all =
+        projectAll_ || debug || mesh_.dynamic() || mesh_.moving()
+     || projectedPose_.size() != n;
+    if (all) return labelList();
+
+    // Moved since their last projection: pose or velocities (Uib)
+    std::vector<bool> in(n, false);
+    DynamicList<label> set;
+    for (size_t bi = 0; bi < n; ++bi)
+    {
+        if (dem.isWall(int(bi))) continue;
+        const rigidBody& b = bodies[bi];
+        const bodyPose& p = projectedPose_[bi];
+        if
+        (
+            b.pose.position() != p.position()
+         || b.pose.orientation().coeffs() != p.orientation().coeffs()
+         || b.velocity != projectedVelocity_[bi]
+         || b.angularVelocity != projectedAngularVelocity_[bi]
+        )
+        {
+            in[bi] = true;
+            set.append(label(bi));
+        }
+    }
+    if (set.empty()) return labelList();
+
+    // Their cells (lambda > 0, and the sharp surface's ring) lie in their
+    // world boxes grown by a cell; a body whose box, grown alike, comes
+    // within a cell of theirs (before or after the move) may share cells
+    // with them (the larger fraction wins, the first ring claims): it is
+    // projected again too, and so on. Then the bodies not projected own
+    // cells no projected body can reach, and the result is that of
+    // projecting every body
+    const scalar g = 2*largestCellSize_;
+    std::vector<axisAlignedBox> now(n);
+    for (size_t bi = 0; bi < n; ++bi)
+    {
+        if (dem.isWall(int(bi))) continue;
+        now[bi] = bodies[bi].geometry->worldBox(bodies[bi].pose).inflated(g);
+    }
+    for (label k = 0; k < set.size(); ++k)
+    {
+        const label i = set[k];
+        const axisAlignedBox before = projectedBox_[i].inflated(g);
+        for (size_t j = 0; j < n; ++j)
+        {
+            if (in[j] || dem.isWall(int(j))) continue;
+            if (now[j].overlaps(now[i]) || now[j].overlaps(before))
+            {
+                in[j] = true;
+                set.append(label(j));
+            }
+        }
+    }
+    label nBodies = 0;
+    for (size_t bi = 0; bi < n; ++bi)
+    {
+        if (!dem.isWall(int(bi))) ++nBodies;
+    }
+    if (set.size() == nBodies)
+    {
+        all = true;
+        return labelList();
+    }
+    Foam::sort(set);
+    return labelList(std::move(set));
+}
+
+
 Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
 {
     const clockTime timer;
@@ -55,6 +154,11 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     scalarField& lambda = lambda_.primitiveFieldRef();
     vectorField& Uib = Uib_.primitiveFieldRef();
     scalarField& zone = contactZone_.primitiveFieldRef();
+    const auto& bodies = dem.bodies();
+    const scalarField& V = mesh_.V();
+
+    bool all = true;
+    labelList toProject;
     if (bodyOf_.size() != mesh_.nCells())
     {
         // New mesh (start, topology change): everything
@@ -66,21 +170,57 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         wallK_.setSize(mesh_.nCells());
         wallK_ = 0;
         largestCellSize_ = 0;
+        touched_.clear();
     }
     else
     {
-        // Only the cells the last projection set: the cost follows the
-        // bodies, not the mesh
+        largestCellSize();
+        toProject = bodiesToProject(dem, all);
+        if (!all && toProject.empty())
+        {
+            // Nothing moved: the cells stay as they are
+            lastProjected_ = 0;
+            projectedTimeIndex_ = mesh_.time().timeIndex();
+            seconds_ += timer.elapsedTime();
+            label nCells = 0;
+            for (const label celli : touched_)
+            {
+                if (lambda[celli] > 0) ++nCells;
+            }
+            return nCells;
+        }
+        // Only the cells the last projection set (of the bodies projected
+        // now): the cost follows the bodies, not the mesh
+        std::vector<bool> again(bodies.size(), all);
+        for (const label bi : toProject) again[bi] = true;
+        label kept = 0;
         for (const label celli : touched_)
         {
+            const label bi = bodyOf_[celli];
+            if (!all && bi >= 0 && !again[bi])
+            {
+                touched_[kept++] = celli;
+                continue;
+            }
             lambda[celli] = 0;
             Uib[celli] = Zero;
             zone[celli] = 0;
             bodyOf_[celli] = -1;
             wallK_[celli] = 0;
         }
+        touched_.setSize(kept);
     }
-    touched_.clear();
+    if (all)
+    {
+        toProject.setSize(bodies.size());
+        label k = 0;
+        for (size_t bi = 0; bi < bodies.size(); ++bi)
+        {
+            if (!dem.isWall(int(bi))) toProject[k++] = label(bi);
+        }
+        toProject.setSize(k);
+    }
+    largestCellSize();
 
     const pointField& points = mesh_.points();
     const vectorField& C = mesh_.cellCentres();
@@ -152,14 +292,10 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         }
     };
 
-    label nCells = 0;
-    const auto& bodies = dem.bodies();
     projectedVolume_.setSize(bodies.size());
     projectedVolume_ = Zero;
-    const scalarField& V = mesh_.V();
-    for (size_t bi = 0; bi < bodies.size(); ++bi)
+    for (const label bi : toProject)
     {
-        if (dem.isWall(int(bi))) continue;
         const rigidBody& b = bodies[bi];
         const axisAlignedBox wb = b.geometry->worldBox(b.pose);
         const treeBoundBox bb(v(wb.min), v(wb.max));
@@ -170,7 +306,6 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             const scalar f = boxFraction::of(*b.geometry, b.pose, lo, hi, 1);
             if (f > lambda[celli])
             {
-                if (lambda[celli] == 0) ++nCells;
                 if (bodyOf_[celli] < 0) touched_.append(celli);
                 lambda[celli] = f;
                 bodyOf_[celli] = label(bi);
@@ -180,20 +315,9 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     }
     if (forcing_.sharp)
     {
-        if (!(largestCellSize_ > 0))
-        {
-            // The ring of fluid cells next to a body's centre-inside cells
-            // lies within one cell of its box
-            scalar h = 0;
-            for (const scalar Vc : V) h = max(h, cbrt(Vc));
-            largestCellSize_ = returnReduce(h, maxOp<scalar>());
-            // Split and graded hexahedra are not cubes
-            largestCellSize_ *= 2;
-        }
         const vector grow(vector::uniform(largestCellSize_));
-        for (size_t bi = 0; bi < bodies.size(); ++bi)
+        for (const label bi : toProject)
         {
-            if (dem.isWall(int(bi))) continue;
             const axisAlignedBox wb = bodies[bi].geometry->worldBox(bodies[bi].pose);
             projectSharp
             (
@@ -202,9 +326,14 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             );
         }
     }
+    label nCells = 0;
     for (const label celli : touched_)
     {
-        projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+        if (lambda[celli] > 0)
+        {
+            ++nCells;
+            projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+        }
     }
 
     // The contact zone is a refinement field: only a dynamic mesh reads it,
@@ -239,6 +368,26 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     lambda_.correctBoundaryConditions();
     Uib_.correctBoundaryConditions();
     projectedTimeIndex_ = mesh_.time().timeIndex();
+
+    // What each body was projected with
+    const size_t n = bodies.size();
+    projectedPose_.resize(n);
+    projectedVelocity_.resize(n, vec3::Zero());
+    projectedAngularVelocity_.resize(n, vec3::Zero());
+    projectedBox_.resize(n);
+    projections_.setSize(label(n), 0);
+    for (const label bi : toProject)
+    {
+        const rigidBody& b = bodies[bi];
+        projectedPose_[bi] = b.pose;
+        projectedVelocity_[bi] = b.velocity;
+        projectedAngularVelocity_[bi] = b.angularVelocity;
+        projectedBox_[bi] = b.geometry->worldBox(b.pose);
+        ++projections_[bi];
+    }
+    lastProjected_ = toProject.size();
+    projectAll_ = false;
+
     seconds_ += timer.elapsedTime();
     return nCells;
 }
@@ -305,6 +454,7 @@ void Foam::immersedBoundaryProjection::setForcing
     registered_ = true;
     if (changed && bodyOf_.size())
     {
+        projectAll_ = true;
         project(dem);
     }
 }

@@ -73,7 +73,14 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     forAll(projectedVolume, i)
     {
         const rigidBody& b = dem_->bodies()[i];
-        if (!dem_->isWall(i) && projectedVolume[i] < 0.5*b.geometry->volume())
+        // 2D: a fixed or prescribed sphere is kept whole (its section in
+        // the slab is what the fluid sees)
+        const bool slabSection = mesh.nSolutionD() < 3 && !b.dynamic();
+        if
+        (
+            !dem_->isWall(i) && !slabSection
+         && projectedVolume[i] < 0.5*b.geometry->volume()
+        )
         {
             WarningInFunction
                 << "Body '" << b.name << "' of " << properties_.objectPath()

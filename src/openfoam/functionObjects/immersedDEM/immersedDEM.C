@@ -278,7 +278,9 @@ bool Foam::functionObjects::immersedDEM::execute()
         << ", largest overlap " << largest << " m3"
         << ", seconds: projection " << projectionSeconds
         << " DEM " << demSeconds
-        << " forcing " << forcingSeconds << endl;
+        << " forcing " << forcingSeconds
+        << " (projected bodies " << state_.projection().lastProjected() << ')'
+        << endl;
 
     if (output_)
     {
@@ -303,5 +305,21 @@ bool Foam::functionObjects::immersedDEM::write()
     {
         output_->writeVTK(time_.value(), state_.dem());
     }
+    return true;
+}
+
+
+bool Foam::functionObjects::immersedDEM::end()
+{
+    // How often each body was projected on the mesh: once per mesh for a
+    // body that does not move
+    const List<label>& n = state_.projection().projections();
+    Log << type() << ' ' << name() << ": projections per body:";
+    forAll(n, i)
+    {
+        if (state_.dem().isWall(i)) continue;
+        Log << ' ' << word(state_.dem().bodies()[i].name) << ' ' << n[i];
+    }
+    Log << endl;
     return true;
 }
