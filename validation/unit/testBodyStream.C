@@ -291,6 +291,9 @@ TEST(BodyRemoval, OutletRemovesBodiesAndTheirContacts)
         EXPECT_LT(c.a, 3);
         EXPECT_LT(c.b, 3);
     }
+    // Nothing to remove: nothing changes
+    EXPECT_EQ(dem.removeBodies({}), std::vector<int>({0, 1, 2}));
+    EXPECT_EQ(dem.bodies()[2].name, "s2");
     EXPECT_THROW(dem.removeBodies({0}), coreError);
     EXPECT_THROW(dem.removeBodies({7}), coreError);
 }

@@ -31,10 +31,10 @@ Foam::immersedDEMStreams::immersedDEMStreams
             if (b.name.rfind(prefix, 0) == 0)
             {
                 FatalIOErrorInFunction(dict)
-                    << "Insertion '" << st.settings().name << "' in " << dict.name()
+                    << "Insertion '" << st.settings().name.c_str() << "' in " << dict.name()
                     << ": the name of body or wall '" << b.name.c_str()
                     << "' is taken by the names of its bodies ("
-                    << st.settings().name << "_<n>)" << nl << exit(FatalIOError);
+                    << st.settings().name.c_str() << "_<n>)" << nl << exit(FatalIOError);
             }
         }
     }
@@ -151,7 +151,7 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
         catch (const coreError& err)
         {
             FatalErrorInFunction
-                << "Insertion '" << streams_[k].settings().name << "' of "
+                << "Insertion '" << streams_[k].settings().name.c_str() << "' of "
                 << dictName_ << " at t " << t << ": " << err.what() << exit(FatalError);
         }
         c.nNew += r.placed;
@@ -170,7 +170,7 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
         if (r.waiting > 0 && !warnedWaiting_[k])
         {
             WarningInFunction
-                << "Insertion '" << streams_[k].settings().name << "' of "
+                << "Insertion '" << streams_[k].settings().name.c_str() << "' of "
                 << dictName_ << " at t " << t << ": " << r.waiting << " bodies due"
                 << " could not be placed (no free position in maxAttempts "
                 << streams_[k].settings().maxAttempts << "); they wait and are"
@@ -269,7 +269,7 @@ void Foam::immersedDEMStreams::restore(const dictionary& state, demSolver& dem)
             {
                 FatalIOErrorInFunction(bd)
                     << "Body '" << name.c_str() << "' in " << bd.name() << ": the"
-                    << " insertion '" << st.settings().name << "' placed "
+                    << " insertion '" << st.settings().name.c_str() << "' placed "
                     << label(st.state().placed) << " bodies only" << nl
                     << exit(FatalIOError);
             }
@@ -280,7 +280,7 @@ void Foam::immersedDEMStreams::restore(const dictionary& state, demSolver& dem)
     Info<< "immersedDEM: restart with " << removed_.size() << " bodies removed so far";
     for (const bodyStream& st : streams_)
     {
-        Info<< ", insertion " << st.settings().name << ' '
+        Info<< ", insertion " << st.settings().name.c_str() << ' '
             << label(st.state().placed) << " placed";
     }
     Info<< endl;

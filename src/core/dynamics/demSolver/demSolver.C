@@ -87,6 +87,11 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
         gone[i] = 1;
     }
     std::vector<int> kept, newIndex(n, -1);
+    if (indices.empty())
+    {
+        for (int i = 0; i < n; ++i) kept.push_back(i);
+        return kept;
+    }
     std::vector<rigidBody> bodies;
     std::vector<char> isWall;
     for (int i = 0; i < n; ++i)
@@ -96,10 +101,6 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
         kept.push_back(i);
         bodies.push_back(std::move(bodies_[i]));
         isWall.push_back(isWall_[i]);
-    }
-    if (kept.size() == size_t(n))
-    {
-        return kept;
     }
     bodies_.swap(bodies);
     isWall_.swap(isWall);
