@@ -39,6 +39,7 @@ Usage
 #include "Switch.H"
 
 #include "immersedDEMReader.H"
+#include "immersedDEMStreams.H"
 #include "demOutput.H"
 #include "coreError.H"
 
@@ -48,6 +49,16 @@ Usage
 #include <memory>
 
 using namespace Foam;
+
+static label nWalls(const immersedDEM::demSolver& dem)
+{
+    label n = 0;
+    for (size_t i = 0; i < dem.bodies().size(); ++i)
+    {
+        if (dem.isWall(int(i))) ++n;
+    }
+    return n;
+}
 
 int main(int argc, char *argv[])
 {
@@ -149,13 +160,24 @@ int main(int argc, char *argv[])
     }
 
     Info<< "Reading " << properties.objectPath() << endl;
+    const fileName surfaceDir = runTime.globalPath()/runTime.constant()/"triSurface";
+    std::vector<immersedDEM::bodyStream> newStreams;
     auto dem = immersedDEMReader::read
     (
-        properties, runTime.globalPath()/runTime.constant()/"triSurface", g.value(),
-        mesh.get()
+        properties, surfaceDir, g.value(), mesh.get(), &newStreams
     );
     dem->setTime(runTime.value());
     immersedDEMReader::initialOverlaps(*dem, properties.objectPath());
+    // Insertion over time and removal: the bodies due at the start now,
+    // then after every output interval
+    immersedDEMStreams streams
+    (
+        properties, surfaceDir, std::move(newStreams), mesh.get(), *dem
+    );
+    if (streams.active())
+    {
+        streams.update(*dem, runTime.value());
+    }
     const scalar setupSeconds = seconds(wallStart, wallClock::now());
 
     const fileName outDir =
@@ -267,6 +289,10 @@ int main(int argc, char *argv[])
             FatalErrorInFunction
                 << "Time " << runTime.timeName() << ": " << err.what() << exit(FatalError);
         }
+        if (streams.active())
+        {
+            streams.update(*dem, runTime.value());
+        }
         auto b = wallClock::now();
         demSeconds += seconds(a, b);
         scalar largest = 0;
@@ -276,6 +302,7 @@ int main(int argc, char *argv[])
         }
         Info<< "Time = " << runTime.timeName()
             << "  DEM steps " << nSteps
+            << ", bodies " << (dem->bodies().size() - nWalls(*dem))
             << ", contacts " << dem->contacts().size()
             << ", largest overlap " << largest << " m3"
             << ", kinetic energy " << dem->kineticEnergy() << " J" << endl;

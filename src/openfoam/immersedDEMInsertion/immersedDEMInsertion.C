@@ -237,7 +237,7 @@ bodyTemplate readTemplate
 }
 
 
-insertionRegion readRegion(const dictionary& d, const fileName& surfaceDir)
+insertionRegion readRegionDict(const dictionary& d, const fileName& surfaceDir)
 {
     const word type = immersedDEMChecks::oneOf(d, "type", {"box", "cylinder", "surface"});
     if (type == "surface")
@@ -353,12 +353,17 @@ void Foam::immersedDEMInsertion::insert
     for (const entry& e : *id)
     {
         const dictionary& d = immersedDEMChecks::subDictEntry(*id, e, "an insertion's description");
+        if (d.found("rate"))
+        {
+            // Insertion over time: readStreams
+            continue;
+        }
         immersedDEMChecks::allowOnly
         (
             d,
             {
                 "template", "region", "number", "volumeFraction", "seed",
-                "clearance", "maxAttempts"
+                "clearance", "maxAttempts", "rate"
             }
         );
         const bodyTemplate& t = findTemplate(d, templates);
@@ -393,7 +398,7 @@ void Foam::immersedDEMInsertion::insert
                 << "Keyword 'region' in " << d.name() << " is missing or not a"
                 << " dictionary { type box|cylinder|surface; ... }" << exit(FatalIOError);
         }
-        s.region = readRegion(*rd, surfaceDir);
+        s.region = readRegionDict(*rd, surfaceDir);
         s.seed = label(immersedDEMChecks::inRangeOrDefault(d, "seed", 0, 2147483647, 1));
         s.clearance = d.found("clearance")
             ? immersedDEMChecks::positive(d, "clearance", true) : 0;
@@ -422,4 +427,99 @@ void Foam::immersedDEMInsertion::insert
                 << " or volumeFraction, or raise maxAttempts)" << endl;
         }
     }
+}
+
+
+immersedDEM::insertionRegion Foam::immersedDEMInsertion::readRegion
+(
+    const dictionary& d,
+    const fileName& surfaceDir
+)
+{
+    return readRegionDict(d, surfaceDir);
+}
+
+
+std::vector<immersedDEM::bodyStream> Foam::immersedDEMInsertion::readStreams
+(
+    const dictionary& dict,
+    const fileName& surfaceDir,
+    const std::map<word, bodyTemplate>& templates
+)
+{
+    std::vector<bodyStream> streams;
+    const dictionary* id = dict.findDict("insertion");
+    if (!id) return streams;
+    for (const entry& e : *id)
+    {
+        const dictionary& d = immersedDEMChecks::subDictEntry(*id, e, "an insertion's description");
+        if (!d.found("rate")) continue;
+        immersedDEMChecks::allowOnly
+        (
+            d,
+            {
+                "template", "region", "rate", "start", "end", "number",
+                "volumeFraction", "seed", "clearance", "maxAttempts"
+            }
+        );
+        const bodyTemplate& t = findTemplate(d, templates);
+        streamSettings s;
+        s.name = e.keyword();
+        s.rate = immersedDEMChecks::inRange(d, "rate", 1e-9, 1e9);
+        s.start = d.getOrDefault<scalar>("start", 0);
+        if (d.found("end"))
+        {
+            s.end = d.get<scalar>("end");
+            if (!(s.end > s.start))
+            {
+                FatalIOErrorInFunction(d)
+                    << "Keyword 'end' " << s.end << " in " << d.name()
+                    << " must be after 'start' " << s.start << exit(FatalIOError);
+            }
+        }
+        if (d.found("number"))
+        {
+            s.number = label(immersedDEMChecks::inRange(d, "number", 1, 1e9));
+            if (d.get<scalar>("number") != s.number)
+            {
+                FatalIOErrorInFunction(d)
+                    << "Keyword 'number' in " << d.name() << " must be a whole number"
+                    << exit(FatalIOError);
+            }
+        }
+        if (d.found("volumeFraction"))
+        {
+            s.volumeFraction = immersedDEMChecks::inRange(d, "volumeFraction", 1e-6, 0.74);
+        }
+        const dictionary* rd = d.findDict("region");
+        if (!rd)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword 'region' in " << d.name() << " is missing or not a"
+                << " dictionary { type box|cylinder|surface; ... }" << exit(FatalIOError);
+        }
+        s.region = readRegionDict(*rd, surfaceDir);
+        s.seed = label(immersedDEMChecks::inRangeOrDefault(d, "seed", 0, 2147483647, 1));
+        s.clearance = d.found("clearance")
+            ? immersedDEMChecks::positive(d, "clearance", true) : 0;
+        s.maxAttempts =
+            label(immersedDEMChecks::inRangeOrDefault(d, "maxAttempts", 1, 1e8, 1000));
+        try
+        {
+            streams.emplace_back(t, s);
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Insertion '" << s.name << "' in " << d.name() << ": " << err.what()
+                << exit(FatalIOError);
+        }
+        Info<< "    insertion " << s.name.c_str() << ": " << s.rate << " bodies/s of template "
+            << t.name.c_str() << " from t = " << s.start;
+        if (std::isfinite(s.end)) Info<< " to " << s.end;
+        if (s.number > 0) Info<< ", at most " << s.number << " bodies";
+        if (s.volumeFraction > 0) Info<< ", until volume fraction " << s.volumeFraction;
+        Info<< " (region volume " << s.region.volume() << " m3)" << endl;
+    }
+    return streams;
 }

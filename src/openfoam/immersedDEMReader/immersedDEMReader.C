@@ -588,7 +588,8 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     const dictionary& dict,
     const fileName& surfaceDir,
     const vector& gravity,
-    const polyMesh* mesh
+    const polyMesh* mesh,
+    std::vector<immersedDEM::bodyStream>* streams
 )
 {
     // Before the dictionary's own reading merged them away: two bodies of
@@ -606,7 +607,7 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
         dict,
         {
             "materials", "contact", "time", "bodies", "walls", "restart",
-            "templates", "insertion"
+            "templates", "insertion", "removal"
         }
     );
     // restart (yes/no) is used by immersedDEMState: checked here
@@ -690,6 +691,29 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     if (mesh)
     {
         toSlab(*dem, *mesh, dict);
+    }
+
+    // Insertions over time: the virtual mesh's cell size from the smallest
+    // body that can ever be present (the same at a restart, whatever is
+    // present then)
+    std::vector<bodyStream> newStreams =
+        immersedDEMInsertion::readStreams(dict, surfaceDir, templates);
+    if (!newStreams.empty() && !(dem->cellSize() > 0))
+    {
+        double dMin = std::numeric_limits<double>::max();
+        for (size_t i = 0; i < dem->bodies().size(); ++i)
+        {
+            if (!dem->isWall(i)) dMin = std::min(dMin, 2*dem->bodies()[i].equivalentRadius());
+        }
+        for (const bodyStream& st : newStreams)
+        {
+            dMin = std::min(dMin, st.smallestDiameter());
+        }
+        dem->setCellSize(overlapSettings::defaultCellSize(dMin));
+    }
+    if (streams)
+    {
+        *streams = std::move(newStreams);
     }
 
     // The step at the start, and why (it follows the speeds in the run)

@@ -1,6 +1,7 @@
 #include "immersedDEMState.H"
 #include "immersedDEMReader.H"
 #include "uniformDimensionedFields.H"
+#include "coreConversion.H"
 
 using namespace immersedDEM;
 
@@ -48,11 +49,14 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         dimensionedVector(dimAcceleration, Zero)
     );
     Info<< "immersedDEM: reading " << properties_.objectPath() << endl;
-    dem_ = immersedDEMReader::read
-    (
-        properties_, mesh.time().globalPath()/mesh.time().constant()/"triSurface", g.value(), &mesh
-    );
+    const fileName surfaceDir = mesh.time().globalPath()/mesh.time().constant()/"triSurface";
+    std::vector<bodyStream> streams;
+    dem_ = immersedDEMReader::read(properties_, surfaceDir, g.value(), &mesh, &streams);
     dem_->setTime(mesh.time().value());
+    streams_.reset
+    (
+        new immersedDEMStreams(properties_, surfaceDir, std::move(streams), &mesh, *dem_)
+    );
     Info<< "immersedDEM: " << nBodies() << " bodies, "
         << dem_->materials().size() << " materials" << endl;
 
@@ -62,6 +66,16 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     if (!restarted_)
     {
         immersedDEMReader::initialOverlaps(*dem_, properties_.objectPath());
+    }
+    if (!restarted_ && streams_->active())
+    {
+        // The bodies due at the start (a restart has them: the run that
+        // wrote it inserted them after its step to this time)
+        const immersedDEMStreams::change c = streams_->update(*dem_, mesh.time().value());
+        if (c.any())
+        {
+            coupling_->bodiesChanged(*dem_, c.kept, c.firstNew);
+        }
     }
 
     const label nCells = project();
@@ -100,6 +114,39 @@ void Foam::immersedDEMState::takeTimings(scalar& projection, scalar& forcing)
     projection = projection_.takeSeconds();
     forcing = forcingSeconds_ + coupling_->takeSeconds();
     forcingSeconds_ = 0;
+}
+
+
+Foam::immersedDEMStreams::change Foam::immersedDEMState::updateBodies
+(
+    const scalar t,
+    const volVectorField* U
+)
+{
+    immersedDEMStreams::change c;
+    if (!streams_->active())
+    {
+        return c;
+    }
+    c = streams_->update(*dem_, t);
+    if (c.any())
+    {
+        coupling_->bodiesChanged(*dem_, c.kept, c.firstNew);
+        project();
+        if (U && c.nNew > 0)
+        {
+            coupling_->setNewInnerMomentum(projection_, *dem_, *U, c.firstNew);
+        }
+        const List<scalar>& pv = projection_.projectedVolume();
+        for (label i = c.firstNew; i < label(dem_->bodies().size()); ++i)
+        {
+            const rigidBody& b = dem_->bodies()[i];
+            Info<< "immersedDEM: body " << b.name.c_str() << " projected: "
+                << (i < pv.size() ? pv[i] : scalar(0)) << " m3 of its "
+                << b.geometry->volume() << " m3 in the mesh" << endl;
+        }
+    }
+    return c;
 }
 
 

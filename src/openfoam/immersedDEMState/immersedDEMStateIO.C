@@ -91,7 +91,8 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
                 os.endBlock();
             }
         }
-        os  << decrIndent << token::END_BLOCK << nl;
+        os  << decrIndent << token::END_BLOCK << nl << nl;
+        streams_->write(os);
         if (!os.good())
         {
             FatalErrorInFunction
@@ -157,7 +158,13 @@ bool Foam::immersedDEMState::readRestart()
     }
     Info<< "immersedDEM: restarting from " << file << endl;
     IFstream is(file);
-    const dictionary dict(is);
+    dictionary dict(is);
+    dict.name() = file;
+
+    // Bodies inserted over time and removed: as the run that wrote it had
+    // them, then the fluid coupling for those bodies
+    streams_->restore(dict, *dem_);
+    coupling_.reset(new immersedFluidCoupling(*dem_));
 
     auto& bodies = dem_->bodies();
     std::map<std::string, int> index;

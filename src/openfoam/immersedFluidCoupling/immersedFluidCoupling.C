@@ -268,6 +268,57 @@ Foam::scalar Foam::immersedFluidCoupling::takeSeconds()
 }
 
 
+void Foam::immersedFluidCoupling::bodiesChanged
+(
+    const demSolver& dem,
+    const std::vector<int>& kept,
+    const label firstNew
+)
+{
+    const label n = dem.bodies().size();
+    auto remap = [&](List<vector>& l)
+    {
+        List<vector> m(n, Zero);
+        for (label i = 0; i < firstNew; ++i)
+        {
+            m[i] = l[kept.empty() ? i : kept[i]];
+        }
+        l.transfer(m);
+    };
+    remap(innerMomentum_);
+    remap(innerAngularMomentum_);
+    remap(previousVelocity_);
+    remap(previousAngularVelocity_);
+    for (label i = firstNew; i < n; ++i)
+    {
+        previousVelocity_[i] = v(dem.bodies()[i].velocity);
+        previousAngularVelocity_[i] = v(dem.bodies()[i].angularVelocity);
+    }
+}
+
+
+void Foam::immersedFluidCoupling::setNewInnerMomentum
+(
+    const immersedBoundaryProjection& projection,
+    const demSolver& dem,
+    const volVectorField& U,
+    const label first
+)
+{
+    if (first >= label(dem.bodies().size()))
+    {
+        return;
+    }
+    List<vector> P, PM, M, MA;
+    fluidSums(projection, dem, U, 0, P, PM, M, MA);
+    for (label i = first; i < M.size(); ++i)
+    {
+        innerMomentum_[i] = M[i];
+        innerAngularMomentum_[i] = MA[i];
+    }
+}
+
+
 void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
 {
     os.writeEntry("previousVelocity", previousVelocity_[i]);

@@ -77,6 +77,80 @@ int demSolver::addBody(rigidBody b, bool wall)
 }
 
 
+std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
+{
+    const int n = int(bodies_.size());
+    std::vector<char> gone(n, 0);
+    for (const int i : indices)
+    {
+        if (i < 0 || i >= n)
+        {
+            throw coreError("removeBodies: index " + std::to_string(i) + " out of range");
+        }
+        if (isWall_[i])
+        {
+            throw coreError("Wall '" + bodies_[i].name + "' cannot be removed");
+        }
+        gone[i] = 1;
+    }
+    std::vector<int> kept, newIndex(n, -1);
+    if (indices.empty())
+    {
+        for (int i = 0; i < n; ++i) kept.push_back(i);
+        return kept;
+    }
+    std::vector<rigidBody> bodies;
+    std::vector<char> isWall;
+    for (int i = 0; i < n; ++i)
+    {
+        if (gone[i]) continue;
+        newIndex[i] = int(kept.size());
+        kept.push_back(i);
+        bodies.push_back(std::move(bodies_[i]));
+        isWall.push_back(isWall_[i]);
+    }
+    bodies_.swap(bodies);
+    isWall_.swap(isWall);
+
+    // Pairs keep their order (wall or lower index first): renumbering
+    // keeps the order of the indices
+    std::map<std::pair<int, int>, std::vector<contactHistory>> history;
+    for (auto& h : history_)
+    {
+        const int a = newIndex[h.first.first], b = newIndex[h.first.second];
+        if (a >= 0 && b >= 0)
+        {
+            history.emplace(std::make_pair(a, b), std::move(h.second));
+        }
+    }
+    history_.swap(history);
+    std::vector<contactRecord> contacts;
+    for (contactRecord c : contacts_)
+    {
+        if (newIndex[c.a] >= 0 && newIndex[c.b] >= 0)
+        {
+            c.a = newIndex[c.a];
+            c.b = newIndex[c.b];
+            contacts.push_back(c);
+        }
+    }
+    contacts_.swap(contacts);
+    std::set<size_t> warned;
+    for (const size_t i : warnedTravel_)
+    {
+        if (newIndex[i] >= 0) warned.insert(size_t(newIndex[i]));
+    }
+    warnedTravel_.swap(warned);
+
+    // The broad phase starts afresh
+    boxes_.clear();
+    listBox_.clear();
+    neighbours_.clear();
+    forcesCurrent_ = false;
+    return kept;
+}
+
+
 double demSolver::effectiveRadius(int a, int b) const
 {
     const double Rb = bodies_[b].equivalentRadius();

@@ -92,85 +92,118 @@ std::string insertionReport::summary() const
 }
 
 
-namespace
+insertionNeighbourhood::key insertionNeighbourhood::index(const vec3& p) const
 {
+    return key{long(std::floor(p.x()/cell_)), long(std::floor(p.y()/cell_)), long(std::floor(p.z()/cell_))};
+}
 
-// Bodies already present, in a uniform grid of cells (finite bodies) and a
-// list of the large ones and walls, tested against every candidate
-class neighbourhood
+
+const triangleSoup& insertionNeighbourhood::surfaceOf(const shape& s)
 {
-    using key = std::array<long, 3>;
-    double cell_;
-    std::map<key, std::vector<int>> grid_;
-    std::vector<int> large_;
-    std::vector<posedBody> bodies_;
-    std::map<const shape*, triangleSoup> surfaces_;
-
-    key index(const vec3& p) const
+    auto it = surfaces_.find(&s);
+    if (it == surfaces_.end())
     {
-        return key{long(std::floor(p.x()/cell_)), long(std::floor(p.y()/cell_)), long(std::floor(p.z()/cell_))};
+        const std::string t = s.type();
+        it = surfaces_.emplace
+        (
+            &s, (t == "triangleMesh" || t == "wallMesh") ? s.surface() : triangleSoup()
+        ).first;
     }
+    return it->second;
+}
 
-public:
 
-    explicit neighbourhood(double cell) : cell_(cell) {}
-
-    const triangleSoup& surfaceOf(const shape& s)
+void insertionNeighbourhood::add(posedBody b)
+{
+    const int i = int(bodies_.size());
+    const bool finite =
+        b.type == posedBody::kind::sphere || b.type == posedBody::kind::mesh;
+    if (finite && b.box.span().maxCoeff() <= cell_)
     {
-        auto it = surfaces_.find(&s);
-        if (it == surfaces_.end())
-        {
-            const std::string t = s.type();
-            it = surfaces_.emplace
-            (
-                &s, (t == "triangleMesh" || t == "wallMesh") ? s.surface() : triangleSoup()
-            ).first;
-        }
-        return it->second;
+        // A box no larger than a cell: registered in the cell of its
+        // centre, found from the 27 cells around a candidate's
+        grid_[index(b.box.centre())].push_back(i);
     }
-
-    void add(posedBody b)
+    else
     {
-        const int i = int(bodies_.size());
-        const bool finite =
-            b.type == posedBody::kind::sphere || b.type == posedBody::kind::mesh;
-        if (finite && b.box.span().maxCoeff() <= cell_)
-        {
-            // A box no larger than a cell: registered in the cell of its
-            // centre, found from the 27 cells around a candidate's
-            grid_[index(b.box.centre())].push_back(i);
-        }
-        else
-        {
-            large_.push_back(i);
-        }
-        bodies_.push_back(std::move(b));
+        large_.push_back(i);
     }
+    bodies_.push_back(std::move(b));
+}
 
-    bool free(const posedBody& c, double clearance) const
+
+bool insertionNeighbourhood::free(const posedBody& c, double clearance) const
+{
+    for (const int i : large_)
     {
-        for (const int i : large_)
-        {
-            if (!bodySeparation::apart(c, bodies_[i], clearance)) return false;
-        }
-        // A candidate no larger than a cell (checked by the caller)
-        const key k = index(c.box.centre());
-        for (long x = k[0] - 1; x <= k[0] + 1; ++x)
-            for (long y = k[1] - 1; y <= k[1] + 1; ++y)
-                for (long z = k[2] - 1; z <= k[2] + 1; ++z)
+        if (!bodySeparation::apart(c, bodies_[i], clearance)) return false;
+    }
+    // A candidate no larger than a cell (checked by the caller)
+    const key k = index(c.box.centre());
+    for (long x = k[0] - 1; x <= k[0] + 1; ++x)
+        for (long y = k[1] - 1; y <= k[1] + 1; ++y)
+            for (long z = k[2] - 1; z <= k[2] + 1; ++z)
+            {
+                const auto it = grid_.find(key{x, y, z});
+                if (it == grid_.end()) continue;
+                for (const int i : it->second)
                 {
-                    const auto it = grid_.find(key{x, y, z});
-                    if (it == grid_.end()) continue;
-                    for (const int i : it->second)
-                    {
-                        if (!bodySeparation::apart(c, bodies_[i], clearance)) return false;
-                    }
+                    if (!bodySeparation::apart(c, bodies_[i], clearance)) return false;
                 }
-        return true;
-    }
-};
+            }
+    return true;
+}
 
-} // End anonymous namespace
+
+bool bodyInsertion::place
+(
+    const bodyTemplate& t,
+    const std::shared_ptr<const shape>& g,
+    const insertionRegion& region,
+    const posedBody* regionSurface,
+    insertionNeighbourhood& present,
+    const double clearance,
+    const int maxAttempts,
+    std::mt19937_64& rng,
+    bodyPose& pose,
+    long& attempts
+)
+{
+    const triangleSoup& surface = present.surfaceOf(*g);
+    const bool isSphere = g->type() == "sphere";
+    for (int k = 0; k < maxAttempts; ++k)
+    {
+        ++attempts;
+        const quat q = t.randomOrientation
+            ? randomRotation(rng)
+            : quat(t.orientation*g->bodyInFile().orientation());
+        const vec3 x = region.sample(rng);
+        pose = bodyPose(x, q);
+        if (isSphere)
+        {
+            if (!region.containsSphere(x, g->boundingRadius())) continue;
+        }
+        else if (!region.contains(x, 0))
+        {
+            continue;
+        }
+        const posedBody c(*g, pose, surface);
+        if (regionSurface)
+        {
+            if (!bodySeparation::inside(c, *regionSurface)) continue;
+        }
+        else if (!isSphere && !region.containsAll(c.vertices))
+        {
+            continue;
+        }
+        if (present.free(c, clearance))
+        {
+            present.add(c);
+            return true;
+        }
+    }
+    return false;
+}
 
 
 insertionReport bodyInsertion::insert
@@ -214,7 +247,7 @@ insertionReport bodyInsertion::insert
     // Cells twice the largest candidate's box: a candidate's neighbours are
     // in the 27 cells around its centre's
     const double largest = 2*t.maxBoundingRadius() + s.clearance;
-    neighbourhood present(2*largest);
+    insertionNeighbourhood present(2*largest);
     for (const rigidBody& b : dem.bodies())
     {
         present.add(posedBody(*b.geometry, b.pose, present.surfaceOf(*b.geometry)));
@@ -239,42 +272,12 @@ insertionReport bodyInsertion::insert
             r.complete = true;
             break;
         }
-        const triangleSoup& surface = present.surfaceOf(*g);
-        const bool isSphere = g->type() == "sphere";
-
-        bool placed = false;
         bodyPose pose;
-        for (int k = 0; k < s.maxAttempts && !placed; ++k)
-        {
-            ++r.attempts;
-            const quat q = t.randomOrientation
-                ? randomRotation(rng)
-                : quat(t.orientation*g->bodyInFile().orientation());
-            const vec3 x = s.region.sample(rng);
-            pose = bodyPose(x, q);
-            if (isSphere)
-            {
-                if (!s.region.containsSphere(x, g->boundingRadius())) continue;
-            }
-            else if (!s.region.contains(x, 0))
-            {
-                continue;
-            }
-            const posedBody c(*g, pose, surface);
-            if (regionSurface)
-            {
-                if (!bodySeparation::inside(c, *regionSurface)) continue;
-            }
-            else if (!isSphere && !s.region.containsAll(c.vertices))
-            {
-                continue;
-            }
-            placed = present.free(c, s.clearance);
-            if (placed)
-            {
-                present.add(c);
-            }
-        }
+        const bool placed = place
+        (
+            t, g, s.region, regionSurface.get(), present, s.clearance,
+            s.maxAttempts, rng, pose, r.attempts
+        );
         if (!placed)
         {
             break;

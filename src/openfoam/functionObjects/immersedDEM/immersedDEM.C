@@ -261,7 +261,32 @@ bool Foam::functionObjects::immersedDEM::execute()
     }
     const scalar demSeconds = demTimer.elapsedTime();
 
-    state_.project();
+    // Bodies leaving (removal) and entering (insertion over time) at the
+    // end of the step: projected, in the rows of this time
+    const immersedDEMStreams::change change =
+        state_.updateBodies(time_.value(), mesh_.findObject<volVectorField>(UName_));
+    if (change.any())
+    {
+        // The per-body warnings follow their bodies
+        const label n = state_.dem().bodies().size();
+        List<bool> outside(n, false);
+        List<scalar> courant(n, scalar(1));
+        for (label i = 0; i < change.firstNew; ++i)
+        {
+            const label j = change.kept.empty() ? i : change.kept[i];
+            if (j < outside_.size())
+            {
+                outside[i] = outside_[j];
+                courant[i] = reportedCourant_[j];
+            }
+        }
+        outside_.transfer(outside);
+        reportedCourant_.transfer(courant);
+    }
+    else
+    {
+        state_.project();
+    }
     checkBodies(deltaT);
 
     scalar largest = 0;

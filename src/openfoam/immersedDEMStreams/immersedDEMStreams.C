@@ -1,0 +1,287 @@
+#include "immersedDEMStreams.H"
+#include "immersedDEMInsertion.H"
+#include "dictionaryChecks.H"
+#include "coreConversion.H"
+#include "bodyRemoval.H"
+#include "coreError.H"
+#include "Pstream.H"
+#include "ListOps.H"
+
+using namespace immersedDEM;
+
+Foam::immersedDEMStreams::immersedDEMStreams
+(
+    const dictionary& dict,
+    const fileName& surfaceDir,
+    std::vector<bodyStream>&& streams,
+    const polyMesh* mesh,
+    const demSolver& dem
+)
+:
+    streams_(std::move(streams)),
+    mesh_(mesh),
+    dictName_(dict.name()),
+    warnedWaiting_(streams_.size(), false)
+{
+    for (const bodyStream& st : streams_)
+    {
+        const std::string prefix = st.settings().name + "_";
+        for (const rigidBody& b : dem.bodies())
+        {
+            if (b.name.rfind(prefix, 0) == 0)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Insertion '" << st.settings().name.c_str() << "' in " << dict.name()
+                    << ": the name of body or wall '" << b.name.c_str()
+                    << "' is taken by the names of its bodies ("
+                    << st.settings().name.c_str() << "_<n>)" << nl << exit(FatalIOError);
+            }
+        }
+    }
+    const dictionary* rd = dict.findDict("removal");
+    if (!rd)
+    {
+        if (dict.found("removal"))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Keyword 'removal' in " << dict.name() << " must be a dictionary"
+                << " { outlet { type box|cylinder|surface; ... } leavingMesh yes|no; }"
+                << nl << exit(FatalIOError);
+        }
+        return;
+    }
+    immersedDEMChecks::allowOnly(*rd, {"outlet", "leavingMesh"});
+    if (rd->found("outlet"))
+    {
+        const dictionary* od = rd->findDict("outlet");
+        if (!od)
+        {
+            FatalIOErrorInFunction(*rd)
+                << "Keyword 'outlet' in " << rd->name() << " must be a region"
+                << " dictionary { type box|cylinder|surface; ... }" << nl
+                << exit(FatalIOError);
+        }
+        outlets_.push_back(immersedDEMInsertion::readRegion(*od, surfaceDir));
+    }
+    leavingMesh_ = rd->getOrDefault<bool>("leavingMesh", false);
+    if (leavingMesh_ && !mesh_)
+    {
+        FatalIOErrorInFunction(*rd)
+            << "Keyword 'leavingMesh' in " << rd->name() << ": the case has no"
+            << " mesh (constant/polyMesh) to leave; remove the keyword or give"
+            << " an 'outlet' region" << nl << exit(FatalIOError);
+    }
+    if (!outlets_.empty() || leavingMesh_)
+    {
+        Info<< "    removal: bodies whose centre enters";
+        if (!outlets_.empty())
+        {
+            const axisAlignedBox b = outlets_[0].bounds();
+            Info<< " the outlet (bounds " << coreConversion::toFoam(b.min) << ' '
+                << coreConversion::toFoam(b.max) << ")";
+        }
+        if (leavingMesh_)
+        {
+            Info<< (outlets_.empty() ? "" : " or") << " no cell of the mesh";
+        }
+        Info<< " are removed" << endl;
+    }
+}
+
+
+Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
+(
+    demSolver& dem,
+    const scalar t
+)
+{
+    change c;
+    auto& bodies = dem.bodies();
+
+    // Removal: outlets, then the mesh (decided over all processors)
+    std::vector<int> gone = bodyRemoval::bodiesIn(dem, outlets_);
+    std::vector<char> why(bodies.size(), 0);
+    for (const int i : gone) why[i] = 1;
+    if (leavingMesh_)
+    {
+        labelList inMesh(bodies.size(), 0);
+        forAll(inMesh, i)
+        {
+            if (dem.isWall(i) || why[i]) continue;
+            if (mesh_->findCell(coreConversion::toFoam(bodies[i].pose.position())) >= 0)
+            {
+                inMesh[i] = 1;
+            }
+        }
+        Pstream::listCombineGather(inMesh, maxEqOp<label>());
+        Pstream::listCombineScatter(inMesh);
+        forAll(inMesh, i)
+        {
+            if (!dem.isWall(i) && !why[i] && !inMesh[i])
+            {
+                why[i] = 2;
+                gone.push_back(i);
+            }
+        }
+        std::sort(gone.begin(), gone.end());
+    }
+    if (!gone.empty())
+    {
+        for (const int i : gone)
+        {
+            Info<< "immersedDEM: removed body " << bodies[i].name.c_str() << " at t "
+                << t << ": its centre " << coreConversion::toFoam(bodies[i].pose.position())
+                << (why[i] == 1 ? " entered the outlet" : " left the mesh")
+                << endl;
+            removed_.append(word(bodies[i].name));
+        }
+        c.kept = dem.removeBodies(gone);
+        c.nRemoved = label(gone.size());
+    }
+
+    // Insertion
+    c.firstNew = label(bodies.size());
+    for (size_t k = 0; k < streams_.size(); ++k)
+    {
+        streamStepReport r;
+        try
+        {
+            r = streams_[k].insert(dem, t);
+        }
+        catch (const coreError& err)
+        {
+            FatalErrorInFunction
+                << "Insertion '" << streams_[k].settings().name.c_str() << "' of "
+                << dictName_ << " at t " << t << ": " << err.what() << exit(FatalError);
+        }
+        c.nNew += r.placed;
+        for (const int i : r.indices)
+        {
+            const rigidBody& b = dem.bodies()[i];
+            Info<< "immersedDEM: inserted body " << b.name.c_str() << " at t " << t
+                << ": centre " << coreConversion::toFoam(b.pose.position())
+                << ", volume " << b.geometry->volume() << " m3, mass " << b.mass()
+                << " kg" << endl;
+        }
+        if (r.placed > 0 || r.waiting > 0 || r.finishedNow)
+        {
+            Info<< "immersedDEM: " << r.summary().c_str() << endl;
+        }
+        if (r.waiting > 0 && !warnedWaiting_[k])
+        {
+            WarningInFunction
+                << "Insertion '" << streams_[k].settings().name.c_str() << "' of "
+                << dictName_ << " at t " << t << ": " << r.waiting << " bodies due"
+                << " could not be placed (no free position in maxAttempts "
+                << streams_[k].settings().maxAttempts << "); they wait and are"
+                << " tried at every step. Enlarge the region, lower the rate or"
+                << " raise maxAttempts (warned once)" << endl;
+            warnedWaiting_[k] = true;
+        }
+    }
+    return c;
+}
+
+
+void Foam::immersedDEMStreams::write(Ostream& os) const
+{
+    os  << "insertionState" << nl << token::BEGIN_BLOCK << incrIndent << nl;
+    for (const bodyStream& st : streams_)
+    {
+        const streamState& s = st.state();
+        os.beginBlock(word(st.settings().name));
+        os.writeEntry("placed", label(s.placed));
+        os.writeEntry("round", label(s.round));
+        os.writeEntry("attempts", label(s.attempts));
+        os.writeEntry("placedVolume", s.placedVolume);
+        os.writeEntry("finished", Switch(s.finished));
+        os.endBlock();
+    }
+    os  << decrIndent << token::END_BLOCK << nl << nl;
+    os.writeEntry("removed", removed_);
+    os  << nl;
+}
+
+
+void Foam::immersedDEMStreams::restore(const dictionary& state, demSolver& dem)
+{
+    // Older states and runs without streams or removal have neither entry
+    if (const dictionary* sd = state.findDict("insertionState"))
+    {
+        for (bodyStream& st : streams_)
+        {
+            const word name(st.settings().name);
+            const dictionary* d = sd->findDict(name);
+            if (!d)
+            {
+                FatalIOErrorInFunction(*sd)
+                    << "No state for the insertion '" << name << "' in "
+                    << sd->name() << ": the insertions of " << dictName_
+                    << " must be those of the run that wrote it" << nl
+                    << exit(FatalIOError);
+            }
+            streamState s;
+            s.placed = d->get<label>("placed");
+            s.round = d->get<label>("round");
+            s.attempts = d->get<label>("attempts");
+            s.placedVolume = d->get<scalar>("placedVolume");
+            s.finished = d->get<bool>("finished");
+            st.setState(s);
+        }
+    }
+    else if (!streams_.empty())
+    {
+        FatalIOErrorInFunction(state)
+            << "No 'insertionState' in " << state.name() << " for the insertions"
+            << " over time of " << dictName_ << ": the state was written by a run"
+            << " without them" << nl << exit(FatalIOError);
+    }
+    removed_ = state.getOrDefault<wordList>("removed", wordList());
+
+    // Bodies of the start that were removed
+    std::map<std::string, int> index;
+    forAll(dem.bodies(), i) index[dem.bodies()[i].name] = i;
+    std::vector<int> gone;
+    for (const word& n : removed_)
+    {
+        const auto it = index.find(n);
+        if (it != index.end()) gone.push_back(it->second);
+    }
+    std::sort(gone.begin(), gone.end());
+    dem.removeBodies(gone);
+
+    // The stream bodies present, in the order of the saved bodies
+    const dictionary& bd = state.subDict("bodies");
+    for (const entry& e : bd)
+    {
+        const std::string name = e.keyword();
+        for (const bodyStream& st : streams_)
+        {
+            const std::string prefix = st.settings().name + "_";
+            if (name.rfind(prefix, 0) != 0) continue;
+            const std::string rest = name.substr(prefix.size());
+            if (rest.empty() || rest.find_first_not_of("0123456789") != std::string::npos)
+            {
+                continue;
+            }
+            const long n = std::stol(rest);
+            if (n >= st.state().placed)
+            {
+                FatalIOErrorInFunction(bd)
+                    << "Body '" << name.c_str() << "' in " << bd.name() << ": the"
+                    << " insertion '" << st.settings().name.c_str() << "' placed "
+                    << label(st.state().placed) << " bodies only" << nl
+                    << exit(FatalIOError);
+            }
+            dem.addBody(st.body(n));
+        }
+    }
+    dem.invalidate();
+    Info<< "immersedDEM: restart with " << removed_.size() << " bodies removed so far";
+    for (const bodyStream& st : streams_)
+    {
+        Info<< ", insertion " << st.settings().name.c_str() << ' '
+            << label(st.state().placed) << " placed";
+    }
+    Info<< endl;
+}
