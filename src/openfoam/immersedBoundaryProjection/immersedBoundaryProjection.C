@@ -63,6 +63,10 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         zone = 0;
         bodyOf_.setSize(mesh_.nCells());
         bodyOf_ = -1;
+        secondOf_.setSize(mesh_.nCells());
+        secondOf_ = -1;
+        secondLambda_.setSize(mesh_.nCells());
+        secondLambda_ = 0;
         wallK_.setSize(mesh_.nCells());
         wallK_ = 0;
         largestCellSize_ = 0;
@@ -77,6 +81,8 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             Uib[celli] = Zero;
             zone[celli] = 0;
             bodyOf_[celli] = -1;
+            secondOf_[celli] = -1;
+            secondLambda_[celli] = 0;
             wallK_[celli] = 0;
         }
     }
@@ -172,9 +178,20 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             {
                 if (lambda[celli] == 0) ++nCells;
                 if (bodyOf_[celli] < 0) touched_.append(celli);
+                if (bodyOf_[celli] >= 0 && lambda[celli] > secondLambda_[celli])
+                {
+                    // The body that had the cell keeps its share of it
+                    secondOf_[celli] = bodyOf_[celli];
+                    secondLambda_[celli] = lambda[celli];
+                }
                 lambda[celli] = f;
                 bodyOf_[celli] = label(bi);
                 Uib[celli] = v(b.pointVelocity(c(C[celli])));
+            }
+            else if (f > secondLambda_[celli])
+            {
+                secondOf_[celli] = label(bi);
+                secondLambda_[celli] = f;
             }
         }
     }
@@ -204,7 +221,12 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     }
     for (const label celli : touched_)
     {
+        if (bodyOf_[celli] < 0) continue;
         projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+        if (secondOf_[celli] >= 0)
+        {
+            projectedVolume_[secondOf_[celli]] += secondLambda_[celli]*V[celli];
+        }
     }
 
     // The contact zone is a refinement field: only a dynamic mesh reads it,

@@ -85,6 +85,8 @@ void Foam::immersedFluidCoupling::fluidSums
     const scalarField& lambda = projection.lambda().primitiveField();
     const vectorField& Uib = projection.Uib().primitiveField();
     const labelList& bodyOf = projection.bodyOf();
+    const labelList& secondOf = projection.secondOf();
+    const scalarField& secondLambda = projection.secondLambda();
     for (const label celli : projection.touched())
     {
         const label i = bodyOf[celli];
@@ -98,6 +100,17 @@ void Foam::immersedFluidCoupling::fluidSums
         penaltyMoment[i] += r ^ d;
         momentum[i] += m;
         angularMomentum[i] += r ^ m;
+
+        // The fluid in a cell shared with a second body: its part of the
+        // cell is that body's inner fluid
+        const label j = secondOf[celli];
+        if (j >= 0)
+        {
+            const vector mj = secondLambda[celli]*V[celli]*U[celli];
+            const vector rj = C[celli] - v(dem.bodies()[j].pose.position());
+            momentum[j] += mj;
+            angularMomentum[j] += rj ^ mj;
+        }
     }
     if (deltaT > 0)
     {
