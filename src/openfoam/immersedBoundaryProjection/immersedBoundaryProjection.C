@@ -167,6 +167,10 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         zone = 0;
         bodyOf_.setSize(mesh_.nCells());
         bodyOf_ = -1;
+        secondOf_.setSize(mesh_.nCells());
+        secondOf_ = -1;
+        secondLambda_.setSize(mesh_.nCells());
+        secondLambda_ = 0;
         wallK_.setSize(mesh_.nCells());
         wallK_ = 0;
         largestCellSize_ = 0;
@@ -199,6 +203,12 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             const label bi = bodyOf_[celli];
             if (!all && bi >= 0 && !again[bi])
             {
+                // Kept; a share of a body projected again is set again
+                if (secondOf_[celli] >= 0 && again[secondOf_[celli]])
+                {
+                    secondOf_[celli] = -1;
+                    secondLambda_[celli] = 0;
+                }
                 touched_[kept++] = celli;
                 continue;
             }
@@ -206,6 +216,8 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             Uib[celli] = Zero;
             zone[celli] = 0;
             bodyOf_[celli] = -1;
+            secondOf_[celli] = -1;
+            secondLambda_[celli] = 0;
             wallK_[celli] = 0;
         }
         touched_.setSize(kept);
@@ -307,9 +319,20 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             if (f > lambda[celli])
             {
                 if (bodyOf_[celli] < 0) touched_.append(celli);
+                if (bodyOf_[celli] >= 0 && lambda[celli] > secondLambda_[celli])
+                {
+                    // The body that had the cell keeps its share of it
+                    secondOf_[celli] = bodyOf_[celli];
+                    secondLambda_[celli] = lambda[celli];
+                }
                 lambda[celli] = f;
                 bodyOf_[celli] = label(bi);
                 Uib[celli] = v(b.pointVelocity(c(C[celli])));
+            }
+            else if (f > secondLambda_[celli])
+            {
+                secondOf_[celli] = label(bi);
+                secondLambda_[celli] = f;
             }
         }
     }
@@ -329,10 +352,12 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     label nCells = 0;
     for (const label celli : touched_)
     {
-        if (lambda[celli] > 0)
+        if (bodyOf_[celli] < 0) continue;
+        if (lambda[celli] > 0) ++nCells;
+        projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+        if (secondOf_[celli] >= 0)
         {
-            ++nCells;
-            projectedVolume_[bodyOf_[celli]] += lambda[celli]*V[celli];
+            projectedVolume_[secondOf_[celli]] += secondLambda_[celli]*V[celli];
         }
     }
 

@@ -3,12 +3,13 @@
 tank of wall patches (noSlip) filled with water (nu 1e-6, rho 1000), cubic
 cells, default coupling settings (surface sharp, penalty 1000,
 addedMassCoefficient 1), maxCo-controlled step, bodies of glass density
-(2500) given as name:shape:x:y:z [m] with shape 'cube' (10 mm edge, STL)
-or 'sphereR' (radius R [m]).
+(2500) given as name:shape:x:y:z[:vx:vy:vz] [m, m/s] with shape 'cube'
+(10 mm edge, STL) or 'sphereR' (radius R [m]) and an optional initial
+velocity. --sealedWalls switches sealedWalls on in the fvOption.
 
   makeCase.py <case> --body a:cube:-0.005:0:0.1 [--body ...] [--wallPatch]
               [--lo "x y z"] [--hi "x y z"] [--h 3.125] [--endTime 0.2]
-              [--youngsModulus 6.3e10] [--contact "level 2;"]
+              [--youngsModulus 6.3e10] [--contact "level 2;"] [--sealedWalls]
 """
 import argparse, os
 p = argparse.ArgumentParser()
@@ -21,6 +22,7 @@ p.add_argument("--h", type=float, default=3.125, help="cell size [mm]")
 p.add_argument("--endTime", default="0.2")
 p.add_argument("--writeInterval", default="0.1")
 p.add_argument("--youngsModulus", default="6.3e10")
+p.add_argument("--sealedWalls", action="store_true", help="sealedWalls yes in the fvOption")
 p.add_argument("--contact", default="", help="entries of the contact dictionary")
 a = p.parse_args()
 lo = [float(x) for x in a.lo.split()]
@@ -45,7 +47,8 @@ write("constant/transportProperties", "dictionary", "transportProperties",
 write("constant/turbulenceProperties", "dictionary", "turbulenceProperties",
       "simulationType laminar;\n")
 write("constant/fvOptions", "dictionary", "fvOptions",
-      "bodies { type immersedBoundaryForce; fields (U); }\n")
+      "bodies { type immersedBoundaryForce; fields (U);%s }\n"
+      % (" sealedWalls yes;" if a.sealedWalls else ""))
 corners = [(lo[0], lo[1], lo[2]), (hi[0], lo[1], lo[2]), (hi[0], hi[1], lo[2]), (lo[0], hi[1], lo[2]),
            (lo[0], lo[1], hi[2]), (hi[0], lo[1], hi[2]), (hi[0], hi[1], hi[2]), (lo[0], hi[1], hi[2])]
 write("system/blockMeshDict", "dictionary", "blockMeshDict",
@@ -92,14 +95,16 @@ with open(os.path.join(a.case, "constant/triSurface/cube.stl"), "w") as f:
     f.write("endsolid cube\n")
 bodies = ""
 for spec in a.body:
-    name, shape, x, y, z = spec.split(":")
+    name, shape, x, y, z, *vel = spec.split(":")
     if shape == "cube":
         geo = 'shape triangleMesh; file "cube.stl"; scale 1;'
     elif shape.startswith("sphere"):
         geo = "shape sphere; radius %s;" % shape[len("sphere"):]
     else:
         raise SystemExit("unknown shape " + shape)
-    bodies += "    %s { %s material glass; density 2500; position (%s %s %s); }\n" % (name, geo, x, y, z)
+    velocity = " velocity (%s %s %s);" % tuple(vel) if vel else ""
+    bodies += "    %s { %s material glass; density 2500; position (%s %s %s);%s }\n" % (
+        name, geo, x, y, z, velocity)
 walls = "walls { tank { type patch; patches (walls); material glass; } }\n" if a.wallPatch else ""
 contact = "contact { %s }\n" % a.contact if a.contact else ""
 write("constant/immersedDEMProperties", "dictionary", "immersedDEMProperties",

@@ -40,7 +40,7 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     }
     immersedDEMChecks::allowOnly
     (
-        dict, {"type", "active", "fields", "penalty", "name", "surface", "nu"}
+        dict, {"type", "active", "fields", "penalty", "name", "surface", "nu", "sealedWalls"}
     );
     fieldNames_ = dict.getOrDefault<wordList>("fields", wordList{"U"});
     if (fieldNames_.size() != 1)
@@ -54,6 +54,7 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     immersedBoundaryForcingSettings forcing;
     forcing.penalty =
         immersedDEMChecks::positiveOrDefault(dict, "penalty", forcing.penalty);
+    forcing.sealedWalls = dict.getOrDefault<bool>("sealedWalls", forcing.sealedWalls);
 
     const word surface
     (
