@@ -2,6 +2,7 @@
 #include "coreError.H"
 #include "overlapVolumeContactLaw.H"
 #include "hertzMindlinContactLaw.H"
+#include "potentialContactLaw.H"
 
 #include <functional>
 #include <map>
@@ -17,7 +18,8 @@ const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>>& table
     static const std::map<std::string, std::function<std::unique_ptr<contactLaw>()>> t
     {
         {"volume", []{ return std::unique_ptr<contactLaw>(new overlapVolumeContactLaw()); }},
-        {"hertzMindlin", []{ return std::unique_ptr<contactLaw>(new hertzMindlinContactLaw()); }}
+        {"hertzMindlin", []{ return std::unique_ptr<contactLaw>(new hertzMindlinContactLaw()); }},
+        {"potential", []{ return std::unique_ptr<contactLaw>(new potentialContactLaw()); }}
     };
     return t;
 }

@@ -390,9 +390,9 @@ bool demSolver::evaluatePair
         hs.push_back(h);
 
         B.contactForce += f.force;
-        B.contactTorque += (r.point - B.pose.position()).cross(f.force);
+        B.contactTorque += (r.point - B.pose.position()).cross(f.force) + f.couple;
         A.contactForce -= f.force;
-        A.contactTorque -= (r.point - A.pose.position()).cross(f.force);
+        A.contactTorque -= (r.point - A.pose.position()).cross(f.force) + f.couple;
 
         contactRecord rec;
         rec.a = ia;
@@ -519,7 +519,7 @@ double demSolver::timeStep() const
                 // whose half period does not depend on the speed
                 if (!shapeAs<sphereShape>(*b.geometry))
                 {
-                    const double k = pm.effectiveModulus*M_PI*R*R/lc;
+                    const double k = law_->faceStiffness(pm, M_PI*R*R, Reff, lc);
                     tc = std::min(tc, M_PI*std::sqrt(f*m/k));
                 }
             }

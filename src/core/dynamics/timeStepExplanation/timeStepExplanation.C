@@ -58,7 +58,7 @@ timeStepExplanation timeStepExplanation::of(const demSolver& dem)
                 consider(law->contactTime(pm, f*m, Reff, lc, e.speed), int(i), int(k), f == 1.0, false);
                 if (!dynamic_cast<const sphereShape*>(b.geometry.get()))
                 {
-                    const double kf = pm.effectiveModulus*M_PI*R*R/lc;
+                    const double kf = law->faceStiffness(pm, M_PI*R*R, Reff, lc);
                     consider(M_PI*std::sqrt(f*m/kf), int(i), int(k), f == 1.0, true);
                 }
             }

@@ -29,6 +29,8 @@ struct baseCellSum
     //- Outward area vector of A's surface inside B: the integral of n_A
     //  over it (|.| is the contact area, its direction the mean normal)
     vec3 areaVector = vec3::Zero();
+    //- Its moment about the origin: integral of x x n_A
+    vec3 areaMoment = vec3::Zero();
     std::vector<vec3> edgePoints;
     //- The leaves holding overlap
     axisAlignedBox box;
@@ -630,6 +632,7 @@ public:
         double volume = 0;
         vec3 first = vec3::Zero();
         vec3 areaA = vec3::Zero();
+        vec3 momentA = vec3::Zero();
         bool areaFromFacets = false;
         const leafSurface surfA(a, c, ax, u, w), surfB(b, c, ax, u, w);
         double lo[columnSet::maxPieces], hi[columnSet::maxPieces];
@@ -666,7 +669,11 @@ public:
                         if (t > -0.5*s + tol && t <= 0.5*s + tol && insideB.contains(t))
                         {
                             const auto& tri = fA->triangle(crossTri_[k]);
-                            areaA += (ds*ds/std::abs(tri.nAx))*tri.normal;
+                            const vec3 dS = (ds*ds/std::abs(tri.nAx))*tri.normal;
+                            vec3 xc = x;
+                            xc[ax] += t;
+                            areaA += dS;
+                            momentA += xc.cross(dS);
                         }
                     }
                     areaFromFacets = true;
@@ -701,6 +708,7 @@ public:
             const int ua = (axA + 1) % 3, wa = (axA + 2) % 3;
             const double na = a.normal[axA];
             int crossings = 0;
+            vec3 crossSum = vec3::Zero();
             for (int i = 0; i < n; ++i)
             {
                 for (int j = 0; j < n; ++j)
@@ -714,14 +722,20 @@ public:
                     const double tol = 1e-9*s;
                     if (t <= -0.5*s + tol || t > 0.5*s + tol) continue;
                     x[axA] += t;
-                    if (inB || b.distance + b.normal.dot(x - c) <= 0) ++crossings;
+                    if (inB || b.distance + b.normal.dot(x - c) <= 0)
+                    {
+                        ++crossings;
+                        crossSum += x;
+                    }
                 }
             }
             areaA = (crossings*ds*ds/std::abs(na))*a.normal;
+            momentA = (ds*ds/std::abs(na))*crossSum.cross(a.normal);
         }
         sum.volume += volume;
         sum.first += first;
         sum.areaVector += areaA;
+        sum.areaMoment += momentA;
         sum.box.add(c - vec3::Constant(0.5*s));
         sum.box.add(c + vec3::Constant(0.5*s));
 
@@ -924,6 +938,7 @@ contactGeometry virtualMeshOverlap::evaluate
         r.volume += s.volume;
         r.first += s.first;
         r.areaVector += s.areaVector;
+        r.areaMoment += s.areaMoment;
         r.edgePoints.insert(r.edgePoints.end(), s.edgePoints.begin(), s.edgePoints.end());
         r.box.add(s.box);
     }
@@ -939,6 +954,8 @@ contactGeometry virtualMeshOverlap::evaluate
             ? vec3(r.areaVector.normalized())
             : regionNormal(r.edgePoints, r.areaVector, centreLine);
         cr.area = r.areaVector.norm();
+        cr.areaVector = r.areaVector;
+        cr.areaMoment = r.areaMoment - cr.point.cross(r.areaVector);
         g.regions.push_back(cr);
     }
     // A deterministic order: largest region first
