@@ -296,6 +296,27 @@ insertionRegion readRegionDict(const dictionary& d, const fileName& surfaceDir)
     return insertionRegion();
 }
 
+
+//- The keywords an insertion at start and a stream share: region, seed,
+//  clearance, maxAttempts
+template<class Settings>
+void readPlacement(const dictionary& d, const fileName& surfaceDir, Settings& s)
+{
+    const dictionary* rd = d.findDict("region");
+    if (!rd)
+    {
+        FatalIOErrorInFunction(d)
+            << "Keyword 'region' in " << d.name() << " is missing or not a"
+            << " dictionary { type box|cylinder|surface; ... }" << exit(FatalIOError);
+    }
+    s.region = readRegionDict(*rd, surfaceDir);
+    s.seed = label(immersedDEMChecks::inRangeOrDefault(d, "seed", 0, 2147483647, 1));
+    s.clearance = d.found("clearance")
+        ? immersedDEMChecks::positive(d, "clearance", true) : 0;
+    s.maxAttempts =
+        label(immersedDEMChecks::inRangeOrDefault(d, "maxAttempts", 1, 1e8, 1000));
+}
+
 } // End anonymous namespace
 
 
@@ -391,19 +412,7 @@ void Foam::immersedDEMInsertion::insert
         {
             s.volumeFraction = immersedDEMChecks::inRange(d, "volumeFraction", 1e-6, 0.74);
         }
-        const dictionary* rd = d.findDict("region");
-        if (!rd)
-        {
-            FatalIOErrorInFunction(d)
-                << "Keyword 'region' in " << d.name() << " is missing or not a"
-                << " dictionary { type box|cylinder|surface; ... }" << exit(FatalIOError);
-        }
-        s.region = readRegionDict(*rd, surfaceDir);
-        s.seed = label(immersedDEMChecks::inRangeOrDefault(d, "seed", 0, 2147483647, 1));
-        s.clearance = d.found("clearance")
-            ? immersedDEMChecks::positive(d, "clearance", true) : 0;
-        s.maxAttempts =
-            label(immersedDEMChecks::inRangeOrDefault(d, "maxAttempts", 1, 1e8, 1000));
+        readPlacement(d, surfaceDir, s);
 
         insertionReport r;
         try
@@ -491,19 +500,7 @@ std::vector<immersedDEM::bodyStream> Foam::immersedDEMInsertion::readStreams
         {
             s.volumeFraction = immersedDEMChecks::inRange(d, "volumeFraction", 1e-6, 0.74);
         }
-        const dictionary* rd = d.findDict("region");
-        if (!rd)
-        {
-            FatalIOErrorInFunction(d)
-                << "Keyword 'region' in " << d.name() << " is missing or not a"
-                << " dictionary { type box|cylinder|surface; ... }" << exit(FatalIOError);
-        }
-        s.region = readRegionDict(*rd, surfaceDir);
-        s.seed = label(immersedDEMChecks::inRangeOrDefault(d, "seed", 0, 2147483647, 1));
-        s.clearance = d.found("clearance")
-            ? immersedDEMChecks::positive(d, "clearance", true) : 0;
-        s.maxAttempts =
-            label(immersedDEMChecks::inRangeOrDefault(d, "maxAttempts", 1, 1e8, 1000));
+        readPlacement(d, surfaceDir, s);
         try
         {
             streams.emplace_back(t, s);
