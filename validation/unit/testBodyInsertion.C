@@ -22,22 +22,11 @@ using namespace immersedDEM;
 namespace
 {
 
-contactMaterial glass()
-{
-    contactMaterial m;
-    m.name = "glass";
-    m.youngsModulus = 6e10;
-    m.poissonsRatio = 0.24;
-    m.restitution = 0.9;
-    m.friction = 0.3;
-    return m;
-}
-
 demSolver emptyDem(const std::string& law = "volume")
 {
     demSettings s;
     s.contactLaw = law;
-    return demSolver({glass()}, s);
+    return demSolver({test::glass()}, s);
 }
 
 bodyTemplate sphereTemplate(double R)

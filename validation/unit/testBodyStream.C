@@ -12,6 +12,8 @@
 #include "halfSpaceShape.H"
 #include "coreError.H"
 
+#include "testHelpers.H"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,22 +23,11 @@ using namespace immersedDEM;
 namespace
 {
 
-contactMaterial glass()
-{
-    contactMaterial m;
-    m.name = "glass";
-    m.youngsModulus = 6e10;
-    m.poissonsRatio = 0.24;
-    m.restitution = 0.9;
-    m.friction = 0.3;
-    return m;
-}
-
 demSolver emptyDem(const vec3& g = vec3::Zero())
 {
     demSettings s;
     s.gravity = g;
-    return demSolver({glass()}, s);
+    return demSolver({test::glass()}, s);
 }
 
 bodyTemplate ball(double R)
