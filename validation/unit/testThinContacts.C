@@ -11,6 +11,10 @@ Description
       - overlap pieces closer than a base cell are one contact, farther
         ones two;
       - a part thinner than a leaf (a plate) pressed into a block;
+      - the inside of a face-on-face contact is not refined (cells where
+        both faces are planes that do not cross are exact as they are): the
+        work grows with the contact's rim, not its area, and the volume is
+        still exact;
     and the bound on the work (item 4): a cellSize far too fine for the
     bodies is an error naming cellSize, level and the cells it would need.
 \*---------------------------------------------------------------------------*/
@@ -178,6 +182,39 @@ TEST(thinContacts, plateThinnerThanALeaf)
     std::cout << "plate: exact " << ex.volume() << ", virtualMesh " << vm.volume() << std::endl;
     EXPECT_EQ(vm.regions.size(), 1u);
     EXPECT_NEAR(vm.volume()/ex.volume(), 1, 0.01);
+}
+
+
+TEST(thinContacts, faceOnFaceWorkGrowsWithTheRim)
+{
+    // Square blocks 10 and 20 mm across, 10 mm high, B 0.1 mm into A's top
+    // face, offset and turned by 30 degrees about z, at the 10 mm cube's
+    // default resolution: 4 times the area, twice the rim. Refining the
+    // whole face (as before) made the work grow with the area (3.9x; now
+    // 2.3x)
+    const double h = defaultCellSize();
+    const double depth = 1e-4;
+    long queries[2] = {0, 0};
+    for (int k = 0; k < 2; ++k)
+    {
+        const double side = (k + 1)*2*half;
+        const vec3 e(0.5*side, 0.5*side, half);
+        const triangleMeshShape A(primitiveMeshes::box(e), "A"), B(primitiveMeshes::box(e), "B");
+        const quat q = bodyPose::axisAngle(vec3(0, 0, 1), 30*M_PI/180);
+        const bodyPose pA = A.poseFromFilePlacement(q, vec3(1e-4, 2e-4, 0));
+        const bodyPose pB =
+            B.poseFromFilePlacement(q, vec3(1e-4, 2e-4, 0) + q*vec3(0.2*half, 0.3*half, 2*half - depth));
+        const auto g = virtualMeshOverlap().evaluate(A, pA, B, pB, {h, overlapSettings::defaultLevel});
+        const auto ex = exactOverlap().evaluate(A, pA, B, pB, {});
+        ASSERT_EQ(g.regions.size(), 1u);
+        ASSERT_EQ(ex.regions.size(), 1u);
+        EXPECT_NEAR(g.regions[0].volume/ex.regions[0].volume, 1, 1e-5) << "side " << side;
+        queries[k] = g.queries;
+    }
+    const double ratio = double(queries[1])/double(queries[0]);
+    std::cout << "closest-point queries: " << queries[0] << " (10 mm), " << queries[1]
+        << " (20 mm), ratio " << ratio << std::endl;
+    EXPECT_LT(ratio, 2.5);
 }
 
 

@@ -408,6 +408,7 @@ public:
 
     long queries = 0;
     long leaves = 0;
+    long planarLeaves = 0;    //!< cells ended early: planar surfaces
 
     //- Sums per base cell (size h), by lattice index
     std::map<cellIndex, baseCellSum> sums;
@@ -507,6 +508,17 @@ public:
         // to second order: one level less suffices. Where both surfaces
         // cross (the rim of the overlap, which sets the normal) refine fully.
         const int stopLevel = (inA || inB) ? std::max(0, maxLevel_ - 1) : maxLevel_;
+        // Where the surfaces crossing the cell are planes that cross every
+        // column of the leaf and do not meet inside it (the inside of a
+        // face-on-face contact, a face on a flat wall), the leaf's columns
+        // are exact at any size: no refinement. The cost of a flat contact
+        // then grows with its rim, not its area.
+        if (facets_ && level >= 0 && level < stopLevel && planarCell(c, s, inA, a, inB, b))
+        {
+            ++planarLeaves;
+            leaf(c, s, inA, a, inB, b, *sum);
+            return;
+        }
         if (level < stopLevel)
         {
             const double h = 0.5*s;
@@ -521,6 +533,124 @@ public:
             return;
         }
         leaf(c, s, inA, a, inB, b, *sum);
+    }
+
+    //- Whether S's surface within the ball (c, r) is one plane, the one
+    //  through sp's closest point with normal sp.normal and no curvature
+    //  (a bend below 1e-9 of the cell size s over the cell: the fit of a
+    //  flat face's curvature leaves round-off)
+    bool planarNear
+    (
+        const shape& S, const bodyPose& pS, const vec3& c, double r, double s,
+        const surfacePoint& sp
+    )
+    {
+        if (S.shapeKind() == shape::kind::halfSpace)
+        {
+            return true;
+        }
+        if
+        (
+            (S.shapeKind() != shape::kind::triangleMesh && S.shapeKind() != shape::kind::wallMesh)
+         || sp.curvature.cwiseAbs().maxCoeff()*s > 1e-9
+        )
+        {
+            return false;
+        }
+        local_.clear();
+        if (!S.facetsNear(pS.toBody(c), r, local_, 64) || local_.empty())
+        {
+            return false;
+        }
+        const vec3 n0 = local_[0].normal;
+        const vec3& p0 = local_[0].a;
+        const double tol = 1e-9*s;
+        for (const surfaceFacet& f : local_)
+        {
+            if
+            (
+                f.normal.dot(n0) < 1 - 1e-12
+             || std::abs(n0.dot(f.a - p0)) > tol
+             || std::abs(n0.dot(f.b - p0)) > tol
+             || std::abs(n0.dot(f.c - p0)) > tol
+            )
+            {
+                return false;
+            }
+        }
+        // The closest point's model is that plane
+        return pS.vectorToWorld(n0).dot(sp.normal) > 1 - 1e-12;
+    }
+
+    //- Whether the leaf's column integration is exact in the cell (c, s):
+    //  each surface near it is a plane that, over the cell's columns (along
+    //  the axis the leaf would choose), stays within the cell or wholly
+    //  above or below it, and two such planes do not cross each other there
+    //  (their heights, clipped to the cell, differ in sign nowhere): the
+    //  inside of each column is then one interval whose ends are linear
+    //  over the cell, which the columns' midpoints measure exactly
+    bool planarCell
+    (
+        const vec3& c, double s,
+        bool inA, const surfacePoint& a, bool inB, const surfacePoint& b
+    )
+    {
+        const double r = 0.5*std::sqrt(3.0)*s*(1 + 1e-9);
+        if (!inA && !planarNear(A_, pA_, c, r, s, a)) return false;
+        if (!inB && !planarNear(B_, pB_, c, r, s, b)) return false;
+        // The leaf's column axis (as leaf() chooses it for smooth surfaces)
+        vec3 facing = vec3::Zero();
+        if (!inA) facing = facing.cwiseMax(a.normal.cwiseAbs());
+        if (!inB) facing = facing.cwiseMax(b.normal.cwiseAbs());
+        int ax = 0;
+        facing.maxCoeff(&ax);
+        const int u = (ax + 1) % 3, w = (ax + 2) % 3;
+        // Height along the column axis of the plane of sp over the column
+        // at (du, dw) from the centre
+        auto height = [&](const surfacePoint& sp, double du, double dw)
+        {
+            return -(sp.normal.dot(c - sp.point) + du*sp.normal[u] + dw*sp.normal[w])/sp.normal[ax];
+        };
+        if ((!inA && std::abs(a.normal[ax]) < 1e-6) || (!inB && std::abs(b.normal[ax]) < 1e-6))
+        {
+            return false;
+        }
+        // Each plane: within [-s/2, s/2] over the whole cell, or wholly
+        // above or below it (then its columns are all in or all out)
+        auto classOf = [&](double t)
+        {
+            return t > 0.5*s ? 1 : (t < -0.5*s ? -1 : 0);
+        };
+        int classA = 2, classB = 2;
+        int positive = 0, negative = 0;
+        for (int k = 0; k < 4; ++k)
+        {
+            const double du = (k & 1 ? 0.5 : -0.5)*s, dw = (k & 2 ? 0.5 : -0.5)*s;
+            double tA = 0, tB = 0;
+            if (!inA)
+            {
+                tA = height(a, du, dw);
+                const int cl = classOf(tA);
+                if (classA != 2 && cl != classA) return false;
+                classA = cl;
+                tA = std::max(-0.5*s, std::min(0.5*s, tA));
+            }
+            if (!inB)
+            {
+                tB = height(b, du, dw);
+                const int cl = classOf(tB);
+                if (classB != 2 && cl != classB) return false;
+                classB = cl;
+                tB = std::max(-0.5*s, std::min(0.5*s, tB));
+            }
+            if (!inA && !inB)
+            {
+                // Round-off of coincident planes (touching faces) is no crossing
+                if (tA > tB + 1e-12*s) ++positive;
+                if (tA < tB - 1e-12*s) ++negative;
+            }
+        }
+        return positive == 0 || negative == 0;
     }
 
     //- The triangles of sp's body near a leaf (world frame) when the
