@@ -252,6 +252,12 @@ int main(int argc, char *argv[])
     const scalar t0 = runTime.value();
     const scalar tEnd = runTime.endTime().value();
     auto lastReport = wallClock::now();
+    // Steps per second: whole numbers from 100 on, two decimals below
+    // (a slow run shows 1.63, not 1)
+    auto stepRate = [](const scalar r)
+    {
+        return r >= 100 ? scalar(label(r)) : std::round(100*r)/100;
+    };
     const auto loopStart = lastReport;
     long stepsAtReport = 0, steps = 0;
     auto progress = [&]()
@@ -266,7 +272,7 @@ int main(int argc, char *argv[])
         const scalar rate = (t - t0)/max(elapsed, VSMALL);
         Info<< "Progress: t = " << t << " s of " << tEnd << " ("
             << label(100*(t - t0)/max(tEnd - t0, VSMALL)) << "%), "
-            << label((steps - stepsAtReport)/since) << " DEM steps/s, "
+            << stepRate((steps - stepsAtReport)/since) << " DEM steps/s, "
             << dem->bodies().size() << " bodies and walls, "
             << dem->contacts().size() << " contacts, ETA "
             << label((tEnd - t)/max(rate, VSMALL)) << " s (wall "
