@@ -59,6 +59,7 @@ try:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 except ImportError:
+    print("(no matplotlib: no plot)")
     sys.exit(0)
 fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
 for (s, sc, dt), (f, (t, Cd, Cl)) in sorted(runs.items()):
