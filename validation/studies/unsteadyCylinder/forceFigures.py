@@ -76,8 +76,8 @@ def figures(t, Cd, Cl, tFrom=None, cycles=None):
         ups = [u for u in ups if u >= tFrom]
     if cycles is not None:
         ups = ups[-(cycles + 1):]
-    if len(ups) < 3:
-        raise SystemExit("forceFigures: fewer than 2 whole lift cycles")
+    if len(ups) < 2:
+        raise SystemExit("forceFigures: no whole lift cycle")
     clA, cdA, cdM = [], [], []
     for a, b in zip(ups[:-1], ups[1:]):
         idx = [i for i in range(len(t)) if a <= t[i] < b]
