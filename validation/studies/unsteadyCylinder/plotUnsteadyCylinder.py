@@ -6,8 +6,8 @@
 For every run folder <work>/<series>/<scheme>_<dt>: the figures of the last
 N lift cycles (forceFigures.py), the change when the step is halved, and
 the difference to the body-fitted run with the same scheme and the finer
-step. Plots the lift and drag histories of the finer steps over the last
-cycles (time shifted so that the last upward lift crossing is at 0).
+step. Plots the lift and drag histories over the last cycles of the runs with
+backward and 2 outer correctors and of the coarser step with 1 (time shifted so that the last upward lift crossing is at 0).
 """
 import glob, os, sys
 
@@ -47,7 +47,7 @@ for (s, sc, dt), (f, _) in sorted(runs.items()):
 
 print("\nagainst the body-fitted run with the same scheme and deltaT (immersed/bodyFitted - 1):")
 for (s, sc, dt), (f, _) in sorted(runs.items()):
-    if s == "bodyFitted":
+    if s.startswith("bodyFitted"):
         continue
     r = runs.get(("bodyFitted", sc, dt))
     if r:
@@ -63,10 +63,13 @@ except ImportError:
     sys.exit(0)
 fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
 for (s, sc, dt), (f, (t, Cd, Cl)) in sorted(runs.items()):
+    # the recommended settings, and one outer corrector at the coarser step
+    if not (sc.endswith("-o2") or (sc == "backward-o1" and dt == max(k[2] for k in runs if k[0] == s))):
+        continue
     t0 = f["to"]
     sel = [i for i in range(len(t)) if t[i] >= f["from"]]
     tt = [t[i] - t0 for i in sel]
-    style = "-" if s == "bodyFitted" else "--"
+    style = "-" if s.startswith("bodyFitted") else "--"
     lab = "%s %s dt %g" % (s, sc, dt)
     ax[0].plot(tt, [Cl[i] for i in sel], style, label=lab, lw=1)
     ax[1].plot(tt, [Cd[i] for i in sel], style, label=lab, lw=1)
