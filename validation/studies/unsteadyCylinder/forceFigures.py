@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Force coefficients of the 2D cylinder cases of makeCase.py.
+
+    forceFigures.py <case> [-from T] [-cycles N]
+
+Reads the force history of a case (bodyFitted: postProcessing/coeffs/*/
+coefficient.dat; immersed: postProcessing/bodies/*/bodies.dat, all start
+times, later runs winning), and prints over the last N whole lift cycles
+(or from time T): mean drag coefficient, drag amplitude (half of max - min
+per lift cycle, averaged), lift amplitude (likewise) and Strouhal number
+(from the upward zero crossings of the lift, linearly interpolated).
+As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict.
+"""
+import glob, os, sys
+
+D, U, RHO = 0.01, 0.01, 1000.0
+
+
+def _slab(case):
+    # thickness of the one-cell slab from blockMeshDict's vertices
+    txt = open(os.path.join(case, "system/blockMeshDict")).read()
+    scale = float(txt.split("scale")[1].split(";")[0])
+    zs = set()
+    vs = txt.split("vertices")[1].split(");")[0]
+    for tok in vs.replace("(", " ( ").replace(")", " ) ").split("(")[1:]:
+        parts = tok.split(")")[0].split()
+        if len(parts) == 3:
+            zs.add(float(parts[2]))
+    return (max(zs) - min(zs))*scale
+
+
+def history(case):
+    rows = {}
+    files = glob.glob(os.path.join(case, "postProcessing/coeffs/*/coefficient*.dat"))
+    if files:
+        for f in sorted(files, key=lambda p: float(p.split("/")[-2])):
+            head = None
+            for line in open(f):
+                if line.startswith("#"):
+                    cols = line[1:].split()
+                    if "Time" in cols:
+                        head = cols
+                    continue
+                v = line.split()
+                if not v or head is None:
+                    continue
+                r = dict(zip(head, v))
+                rows[float(r["Time"])] = (float(r["Cd"]), float(r["Cl"]))
+    else:
+        files = glob.glob(os.path.join(case, "postProcessing/bodies/*/bodies*.dat"))
+        if not files:
+            raise SystemExit("forceFigures: no force history in %s" % case)
+        q = 0.5*RHO*U*U*D*_slab(case)
+        for f in sorted(files, key=lambda p: (float(p.split("/")[-2]), os.path.getmtime(p))):
+            head = None
+            for line in open(f):
+                if line.startswith("#"):
+                    head = line[1:].split()
+                    continue
+                v = line.split()
+                if not v or head is None:
+                    continue
+                r = dict(zip(head, v))
+                rows[float(r["time"])] = (float(r["Ffx"])/q, float(r["Ffy"])/q)
+    t = sorted(rows)
+    return t, [rows[x][0] for x in t], [rows[x][1] for x in t]
+
+
+def figures(t, Cd, Cl, tFrom=None, cycles=None):
+    ups = []
+    for i in range(1, len(t)):
+        if Cl[i - 1] < 0 <= Cl[i]:
+            f = -Cl[i - 1]/(Cl[i] - Cl[i - 1])
+            ups.append(t[i - 1] + f*(t[i] - t[i - 1]))
+    if tFrom is not None:
+        ups = [u for u in ups if u >= tFrom]
+    if cycles is not None:
+        ups = ups[-(cycles + 1):]
+    if len(ups) < 2:
+        raise SystemExit("forceFigures: no whole lift cycle")
+    clA, cdA, cdM = [], [], []
+    for a, b in zip(ups[:-1], ups[1:]):
+        idx = [i for i in range(len(t)) if a <= t[i] < b]
+        cl = [Cl[i] for i in idx]
+        cd = [Cd[i] for i in idx]
+        clA.append((max(cl) - min(cl))/2)
+        cdA.append((max(cd) - min(cd))/2)
+        # time-weighted mean over the cycle
+        s = 0.0
+        for i, j in zip(idx[:-1], idx[1:]):
+            s += 0.5*(Cd[i] + Cd[j])*(t[j] - t[i])
+        cdM.append(s/(t[idx[-1]] - t[idx[0]]))
+    n = len(clA)
+    period = (ups[-1] - ups[0])/n
+    return {
+        "cycles": n, "from": ups[0], "to": ups[-1],
+        "CdMean": sum(cdM)/n, "CdAmp": sum(cdA)/n, "ClAmp": sum(clA)/n,
+        "St": D/(U*period),
+        # spread of the lift amplitude over the cycles (saturation check)
+        "ClAmpSpread": (max(clA) - min(clA))/(sum(clA)/n),
+    }
+
+
+def main():
+    a = sys.argv[1:]
+    if not a:
+        raise SystemExit(__doc__)
+    case, tFrom, cycles = a[0], None, 4
+    if "-from" in a:
+        tFrom = float(a[a.index("-from") + 1]); cycles = None
+    if "-cycles" in a:
+        cycles = int(a[a.index("-cycles") + 1])
+    t, Cd, Cl = history(case)
+    f = figures(t, Cd, Cl, tFrom, cycles)
+    print("%s: cycles %d (t %.3f to %.3f) CdMean %.4f CdAmp %.5f ClAmp %.4f St %.4f ClAmpSpread %.4f"
+          % (case, f["cycles"], f["from"], f["to"], f["CdMean"], f["CdAmp"], f["ClAmp"], f["St"], f["ClAmpSpread"]))
+
+
+if __name__ == "__main__":
+    main()
