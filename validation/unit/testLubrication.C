@@ -197,6 +197,7 @@ struct coasting
         s.overlapMethod = "sphere";
         s.deltaT = deltaT;
         s.lubrication.active = active;
+        s.lubrication.activation = 1;
         return demSolver({soft}, s);
     }
 
