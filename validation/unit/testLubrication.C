@@ -9,6 +9,7 @@
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
+#include "wallMeshShape.H"
 #include "primitiveMeshes.H"
 
 #include <gtest/gtest.h>
@@ -289,4 +290,83 @@ TEST(lubrication, tangentialMotionFeelsNoNormalFilm)
     c.dem.advance(1e-3);
     EXPECT_NEAR(c.speed(), 0, 1e-15);
     EXPECT_NEAR(c.dem.bodies()[c.ball].velocity.x(), 0.01, 1e-15);
+}
+
+
+TEST(lubrication, cubeNearTheSideOfAWallSurface)
+{
+    // A tank's walls (normals into the tank) and a cube 1 mm from its +x
+    // side: the gap, the normal from the wall to the cube, the cube's
+    // face centre
+    const wallMeshShape tank
+    (
+        primitiveMeshes::openBox(vec3(-0.025, -0.025, 0), vec3(0.025, 0.025, 0.05), 8),
+        "tank", 0.01
+    );
+    const auto c = cube(0.005);
+    const bodyPose pc = at(vec3(0.019, 0.001, 0.025));
+    const closestApproach a = lubrication::approach(tank, bodyPose(), *c, pc, 0.005);
+    ASSERT_TRUE(a.found);
+    EXPECT_NEAR(a.gap, 0.001, 1e-12);
+    EXPECT_NEAR((a.normal + vec3::UnitX()).norm(), 0, 1e-9);
+    EXPECT_NEAR((a.pointB - vec3(0.024, 0.001, 0.025)).norm(), 0, 1e-9);
+}
+
+
+TEST(lubrication, cubeApproachingAWallSurfaceInTheDem)
+{
+    contactMaterial glass{"glass", 1e7, 0.24, 1, 0};
+    demSettings s;
+    s.overlap.level = 0;
+    demSolver dem({glass}, s);
+    rigidBody tank
+    (
+        "tank",
+        std::make_shared<wallMeshShape>
+        (
+            primitiveMeshes::openBox(vec3(-0.025, -0.025, 0), vec3(0.025, 0.025, 0.05), 8),
+            "tank", 0.01
+        ),
+        1
+    );
+    tank.motion = motionType::fixed;
+    dem.addBody(tank, true);
+    rigidBody b("cube", cube(0.005), 2500);
+    b.pose = at(vec3(0.019, 0.001, 0.025));
+    b.velocity = vec3(0.33, 0, 0);
+    b.fluidCellSize = 3.125e-3;
+    const int i = dem.addBody(b);
+    dem.setFluidViscosity(1e-3);
+    dem.step(1e-5);
+    // The film pushes the cube back from the wall (+x): force along -x
+    EXPECT_LT(dem.bodies()[i].lubricationForce.x(), 0);
+    EXPECT_NEAR(dem.bodies()[i].lubricationForce.y(), 0, 1e-12);
+    EXPECT_GT(dem.work().lubricatedPairs, 0);
+}
+
+
+TEST(lubrication, filmPointMovesContinuouslyAsAFaceTurns)
+{
+    // A cube face over a plane turned by small angles: the film's point
+    // leaves the face's centre gradually (it used to jump to a corner as
+    // soon as the face was not exactly parallel: a run then depended on
+    // round-off, serial against parallel)
+    const double R = 0.005, g = 3e-4, cap = 5e-3;
+    const auto c = cube(R);
+    auto plane = std::make_shared<halfSpaceShape>();
+    const bodyPose floor = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
+    double previous = 0;
+    for (const double angle : {0.0, 1e-9, 1e-6, 1e-5, 1e-4})
+    {
+        const bodyPose p(vec3(0, 0, R + g), quat(Eigen::AngleAxisd(angle, vec3::UnitY())));
+        const closestApproach a = lubrication::approach(*plane, floor, *c, p, cap);
+        ASSERT_TRUE(a.found);
+        const double shift = std::hypot(a.pointB.x(), a.pointB.y());
+        // The lowest edge is 2R sin(angle) below the highest: the point
+        // moves by at most R times that over the band (1e-2 R here)
+        EXPECT_LE(shift, R*(2*R*std::sin(angle))/(1e-2*R) + 1e-12) << "angle " << angle;
+        EXPECT_GE(shift + 1e-15, previous);
+        previous = shift;
+    }
+    EXPECT_LT(previous, R);
 }

@@ -54,7 +54,7 @@ closestApproach sphereAgainst
 closestApproach planeAgainstMesh
 (
     const bodyPose& pP, const triangleBVH& tB, const bodyPose& pB, double cap,
-    double tolerance
+    double band
 )
 {
     closestApproach a;
@@ -69,11 +69,12 @@ closestApproach planeAgainstMesh
     }
     a.found = true;
     a.normal = n;
-    // The corners within a hundredth of the cap of the lowest (and a
-    // thousandth of the body's size): a face parallel to the plane gives
-    // its centre, an edge its middle
+    // The corners within a band above the lowest, weighted to fade out
+    // at its top: a face parallel to the plane gives its centre, an edge
+    // its middle, and the point moves continuously as the body turns (a
+    // point jumping between corners made the run depend on round-off)
     vec3 mean;
-    if (!tB.meanCornerBelow(nB, low + tolerance, mean))
+    if (!tB.meanCornerBelow(nB, low, band, mean))
     {
         return closestApproach();
     }
@@ -125,14 +126,14 @@ closestApproach lubrication::approach
     {
         return planeAgainstMesh
         (
-            pA, *tB, pB, cap, std::min(1e-2*cap, 1e-3*B.boundingRadius())
+            pA, *tB, pB, cap, std::min(0.1*cap, 1e-2*B.boundingRadius())
         );
     }
     if (shapeAs<halfSpaceShape>(B) && tA)
     {
         closestApproach a = planeAgainstMesh
         (
-            pB, *tA, pA, cap, std::min(1e-2*cap, 1e-3*A.boundingRadius())
+            pB, *tA, pA, cap, std::min(0.1*cap, 1e-2*A.boundingRadius())
         );
         std::swap(a.pointA, a.pointB);
         a.normal = -a.normal;
@@ -160,11 +161,12 @@ closestApproach lubrication::approach
         a.normal = (a.pointB - a.pointA)/(a.pointB - a.pointA).norm();
 
         // Faces nearly parallel: the closest pair of triangles is any
-        // point of them; the film's centre is the middle of the body's
-        // corners nearest the other (a face: its centre), those of both
-        // bodies for two bodies (the middle of two faces side by side)
-        const double tol =
-            std::min(1e-2*cap, 1e-3*std::min(A.boundingRadius(), B.boundingRadius()));
+        // point of them; the film's centre is the weighted middle of the
+        // body's corners nearest the other (meanCornerBelow: a face's
+        // centre, continuous as the body turns), of both bodies' for two
+        // bodies
+        const double band =
+            std::min(0.1*cap, 1e-2*std::min(A.boundingRadius(), B.boundingRadius()));
         vec3 sum = vec3::Zero();
         int parts = 0;
         const bool wallA = shapeAs<wallMeshShape>(A) != nullptr;
@@ -173,8 +175,7 @@ closestApproach lubrication::approach
         {
             const vec3 d = p.vectorToBody(dir);
             vec3 mean;
-            int count = 0;
-            if (T.meanCornerBelow(d, T.minAlong(d) + tol, mean, &count) && count >= 3)
+            if (T.meanCornerBelow(d, T.minAlong(d), band, mean))
             {
                 sum += p.toWorld(mean) + shift;
                 ++parts;

@@ -421,13 +421,14 @@ triangleBVH::pairHit triangleBVH::closestPair
 
 bool triangleBVH::meanCornerBelow
 (
-    const vec3& n, double level, vec3& mean, int* count
+    const vec3& n, double low, double band, vec3& mean
 ) const
 {
-    if (nodes_.empty())
+    if (nodes_.empty() || !(band > 0))
     {
         return false;
     }
+    const double level = low + band;
     const vec3 absN = n.cwiseAbs();
     // A corner is stored once per triangle at it: each counted once
     std::vector<std::array<double, 3>> found;
@@ -446,7 +447,7 @@ bool triangleBVH::meanCornerBelow
             {
                 for (const vec3& x : corners_[s])
                 {
-                    if (n.dot(x) <= level)
+                    if (n.dot(x) < level)
                     {
                         found.push_back({x.x(), x.y(), x.z()});
                     }
@@ -459,14 +460,20 @@ bool triangleBVH::meanCornerBelow
     }
     std::sort(found.begin(), found.end());
     found.erase(std::unique(found.begin(), found.end()), found.end());
-    if (found.empty())
+    vec3 sum = vec3::Zero();
+    double weight = 0;
+    for (const auto& c : found)
+    {
+        const vec3 x(c[0], c[1], c[2]);
+        const double w = std::max(0.0, 1 - (n.dot(x) - low)/band);
+        sum += w*x;
+        weight += w;
+    }
+    if (!(weight > 0))
     {
         return false;
     }
-    vec3 sum = vec3::Zero();
-    for (const auto& x : found) sum += vec3(x[0], x[1], x[2]);
-    if (count) *count = int(found.size());
-    mean = sum/double(found.size());
+    mean = sum/weight;
     return true;
 }
 
