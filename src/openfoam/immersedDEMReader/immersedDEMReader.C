@@ -119,6 +119,22 @@ demSettings readSettings(const dictionary& top)
             immersedDEMChecks::oneOfOrDefault(*c, "initialOverlaps", overlapActions, "separate")
          == "separate";
     }
+    if (const dictionary* l = top.findDict("lubrication"))
+    {
+        immersedDEMChecks::allowOnly(*l, {"active", "activation", "roughness"});
+        s.lubrication.active = l->getOrDefault<bool>("active", s.lubrication.active);
+        s.lubrication.activation =
+            immersedDEMChecks::inRangeOrDefault(*l, "activation", 0.1, 10, s.lubrication.activation);
+        s.lubrication.roughness =
+            immersedDEMChecks::inRangeOrDefault(*l, "roughness", 1e-6, 0.1, s.lubrication.roughness);
+    }
+    else if (top.found("lubrication"))
+    {
+        FatalIOErrorInFunction(top)
+            << "Keyword 'lubrication' in " << top.name()
+            << " must be a dictionary: lubrication { active yes; activation 1;"
+            << " roughness 1e-3; }" << nl << exit(FatalIOError);
+    }
     if (const dictionary* t = top.findDict("time"))
     {
         immersedDEMChecks::allowOnly(*t, {"deltaT", "stepsPerContact", "referenceSpeed"});
@@ -607,7 +623,7 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
         dict,
         {
             "materials", "contact", "time", "bodies", "walls", "restart",
-            "templates", "insertion", "removal"
+            "templates", "insertion", "removal", "lubrication"
         }
     );
     // restart (yes/no) is used by immersedDEMState: checked here

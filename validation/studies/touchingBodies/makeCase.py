@@ -3,9 +3,12 @@
 tank of wall patches (noSlip) filled with water (nu 1e-6, rho 1000), cubic
 cells, default coupling settings (surface sharp, penalty 1000,
 addedMassCoefficient 1), maxCo-controlled step, bodies of glass density
-(2500) given as name:shape:x:y:z[:vx:vy:vz] [m, m/s] with shape 'cube'
-(10 mm edge, STL) or 'sphereR' (radius R [m]) and an optional initial
-velocity. --sealedWalls switches sealedWalls on in the fvOption.
+(2500) given as name:shape:x:y:z[:vx:vy:vz[:motion]] [m, m/s] with shape
+'cube' (10 mm edge, STL) or 'sphereR' (radius R [m]), an optional initial
+velocity and motion (free, fixed, prescribed). --sealedWalls switches
+sealedWalls on in the fvOption; --nu sets the fluid's viscosity,
+--lubrication the entries of the lubrication dictionary, --deltaT a fixed
+CFD step (no maxCo control).
 
   makeCase.py <case> --body a:cube:-0.005:0:0.1 [--body ...] [--wallPatch]
               [--lo "x y z"] [--hi "x y z"] [--h 3.125] [--endTime 0.2]
@@ -24,6 +27,9 @@ p.add_argument("--writeInterval", default="0.1")
 p.add_argument("--youngsModulus", default="6.3e10")
 p.add_argument("--sealedWalls", action="store_true", help="sealedWalls yes in the fvOption")
 p.add_argument("--contact", default="", help="entries of the contact dictionary")
+p.add_argument("--lubrication", default="", help="entries of the lubrication dictionary")
+p.add_argument("--nu", default="1e-06", help="kinematic viscosity [m2/s]")
+p.add_argument("--deltaT", default="", help="fixed CFD step [s]")
 a = p.parse_args()
 lo = [float(x) for x in a.lo.split()]
 hi = [float(x) for x in a.hi.split()]
@@ -43,7 +49,7 @@ write("0/p", "volScalarField", "p", "dimensions [0 2 -2 0 0 0 0];\n"
 write("constant/g", "uniformDimensionedVectorField", "g",
       "dimensions [0 1 -2 0 0 0 0];\nvalue (0 0 -9.81);\n")
 write("constant/transportProperties", "dictionary", "transportProperties",
-      "transportModel Newtonian;\nnu 1e-06;\n")
+      "transportModel Newtonian;\nnu %s;\n" % a.nu)
 write("constant/turbulenceProperties", "dictionary", "turbulenceProperties",
       "simulationType laminar;\n")
 write("constant/fvOptions", "dictionary", "fvOptions",
@@ -59,12 +65,15 @@ write("system/blockMeshDict", "dictionary", "blockMeshDict",
 write("system/controlDict", "dictionary", "controlDict", """application pimpleFoam;
 libs ("libimmersedDEM.so");
 startFrom latestTime; startTime 0; stopAt endTime; endTime %s;
-deltaT 0.0005; adjustTimeStep yes; maxCo 0.5; maxDeltaT 0.005;
+%s
 writeControl adjustableRunTime; writeInterval %s; purgeWrite 0;
 writeFormat binary; writePrecision 10; writeCompression off;
 timeFormat general; timePrecision 8; runTimeModifiable false;
 functions { bodies { type immersedDEM; rhoInf 1000; } }
-""" % (a.endTime, a.writeInterval))
+""" % (a.endTime,
+       "deltaT %s; adjustTimeStep no;" % a.deltaT if a.deltaT
+       else "deltaT 0.0005; adjustTimeStep yes; maxCo 0.5; maxDeltaT 0.005;",
+       a.writeInterval))
 write("system/fvSchemes", "dictionary", "fvSchemes", """ddtSchemes { default backward; }
 gradSchemes { default Gauss linear; }
 divSchemes { default none; div(phi,U) Gauss linear; div((nuEff*dev2(T(grad(U))))) Gauss linear; }
@@ -96,6 +105,7 @@ with open(os.path.join(a.case, "constant/triSurface/cube.stl"), "w") as f:
 bodies = ""
 for spec in a.body:
     name, shape, x, y, z, *vel = spec.split(":")
+    motion = " motion %s;" % vel.pop() if len(vel) == 4 else ""
     if shape == "cube":
         geo = 'shape triangleMesh; file "cube.stl"; scale 1;'
     elif shape.startswith("sphere"):
@@ -103,10 +113,11 @@ for spec in a.body:
     else:
         raise SystemExit("unknown shape " + shape)
     velocity = " velocity (%s %s %s);" % tuple(vel) if vel else ""
-    bodies += "    %s { %s material glass; density 2500; position (%s %s %s);%s }\n" % (
-        name, geo, x, y, z, velocity)
+    bodies += "    %s { %s material glass; density 2500; position (%s %s %s);%s%s }\n" % (
+        name, geo, x, y, z, velocity, motion)
 walls = "walls { tank { type patch; patches (walls); material glass; } }\n" if a.wallPatch else ""
 contact = "contact { %s }\n" % a.contact if a.contact else ""
+contact += "lubrication { %s }\n" % a.lubrication if a.lubrication else ""
 write("constant/immersedDEMProperties", "dictionary", "immersedDEMProperties",
       "materials { glass { youngsModulus %s; poissonsRatio 0.24; } }\n%sbodies\n{\n%s}\n%s"
       % (a.youngsModulus, contact, bodies, walls))

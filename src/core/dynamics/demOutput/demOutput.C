@@ -75,7 +75,7 @@ const std::vector<std::string>& demOutput::bodyColumns()
         "time", "body", "x", "y", "z", "qw", "qx", "qy", "qz",
         "vx", "vy", "vz", "wx", "wy", "wz",
         "Fx", "Fy", "Fz", "Fcx", "Fcy", "Fcz", "Ffx", "Ffy", "Ffz",
-        "Tx", "Ty", "Tz"
+        "Tx", "Ty", "Tz", "Flx", "Fly", "Flz"
     };
     return c;
 }
@@ -123,6 +123,7 @@ void demOutput::writeBodies(double time, const demSolver& dem)
         v3(b.contactForce);
         v3(b.appliedFluidForce(dem.time()));
         v3(T);
+        v3(b.lubricationForce);
         bodies_ << '\n';
     }
     bodies_.flush();

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace immersedDEM
@@ -230,9 +231,13 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     box.resize(n);
     std::vector<int> walls, others;
     double cell = 0;
+    // Lubrication reaches beyond the contact: boxes grown by half its
+    // activation distance meet where the gap may be below it
+    const double margin = 0.5*lubricationReach();
     for (int i = 0; i < n; ++i)
     {
         box[i] = bodies_[i].geometry->worldBox(bodies_[i].pose);
+        if (margin > 0) box[i] = box[i].inflated(margin);
         if (isWall_[i])
         {
             walls.push_back(i);
@@ -270,12 +275,18 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(neighbours_.size() + walls.size()*others.size());
 
-    // Walls (few, large) against every body that can move
+    // Walls (few, large) against every body that can move (a prescribed
+    // one too when lubricating: its film is output)
+    const bool lub = margin > 0;
+    auto moves = [this, lub](int i)
+    {
+        return bodies_[i].dynamic() || (lub && bodies_[i].motion != motionType::fixed);
+    };
     for (const int w : walls)
     {
         for (const int i : others)
         {
-            if (bodies_[i].dynamic() && box[w].overlaps(box[i]))
+            if (moves(i) && box[w].overlaps(box[i]))
             {
                 pairs.emplace_back(w, i);
             }
@@ -286,7 +297,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     for (const auto& p : neighbours_)
     {
         const int i = p.first, j = p.second;
-        if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
+        if (!moves(i) && !moves(j)) continue;
         if (!box[i].overlaps(box[j])) continue;
         pairs.push_back(p);
     }
@@ -405,6 +416,112 @@ bool demSolver::evaluatePair
 }
 
 
+double demSolver::lubricationReach() const
+{
+    if (!lubricating())
+    {
+        return 0;
+    }
+    double h = 0;
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (!isWall_[i]) h = std::max(h, bodies_[i].fluidCellSize);
+    }
+    return settings_.lubrication.activation*h;
+}
+
+
+double demSolver::inverseMassAlong(const rigidBody& b, const vec3& x, const vec3& n) const
+{
+    if (!b.dynamic())
+    {
+        return 0;
+    }
+    const vec3 rn = (x - b.pose.position()).cross(n);
+    return 1/b.mass() + rn.dot(b.worldInertia().inverse()*rn);
+}
+
+
+void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
+{
+    rigidBody& A = bodies_[ia];
+    rigidBody& B = bodies_[ib];
+    // The activation distance: in the finer fluid cells of the two
+    double cell = 0;
+    for (const rigidBody* b : {&A, &B})
+    {
+        if (b->fluidCellSize > 0 && !isWall_[b == &A ? ia : ib])
+        {
+            cell = cell > 0 ? std::min(cell, b->fluidCellSize) : b->fluidCellSize;
+        }
+    }
+    const lubricationSettings& ls = settings_.lubrication;
+    const double hAct = ls.activation*cell;
+    if (!(hAct > 0))
+    {
+        return;
+    }
+    lubricationFilter_.setReach(hAct);
+    if (lubricationFilter_.separated(ia, ib, *A.geometry, A.pose, *B.geometry, B.pose))
+    {
+        return;
+    }
+    const closestApproach c =
+        lubrication::approach(*A.geometry, A.pose, *B.geometry, B.pose, hAct);
+    lubricationFilter_.engineResult(ia, ib, c.found);
+    if (!c.found || !(c.gap < hAct))
+    {
+        return;
+    }
+    vec3 n = c.normal;
+    vec3 x = 0.5*(c.pointA + c.pointB);
+    if (!(c.gap > 0))
+    {
+        // Touching or overlapping: the contact's point and normal (its
+        // largest region of this pair); none found, no film to speak of
+        const contactRecord* best = nullptr;
+        for (size_t k = contactsFrom; k < contacts_.size(); ++k)
+        {
+            if (!best || contacts_[k].region.volume > best->region.volume)
+            {
+                best = &contacts_[k];
+            }
+        }
+        if (!best)
+        {
+            return;
+        }
+        n = best->region.normal;
+        x = best->region.point;
+    }
+    const double Rcap = effectiveRadius(ia, ib);
+    const double R = lubrication::gapRadius
+    (
+        lubrication::curvatureNear(*A.geometry, A.pose, x),
+        lubrication::curvatureNear(*B.geometry, B.pose, x),
+        n, Rcap
+    );
+    double coeff = lubrication::coefficient
+    (
+        ls.viscosity, R, c.gap, hAct, ls.roughness*Rcap
+    );
+    // The damper removes at most the whole normal approach in one step
+    const double dt = lastDt_ > 0 ? lastDt_ : timeStep();
+    const double invMass = inverseMassAlong(A, x, n) + inverseMassAlong(B, x, n);
+    if (invMass > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
+    {
+        coeff = std::min(coeff, 1/(invMass*dt));
+    }
+    const double un = (B.pointVelocity(x) - A.pointVelocity(x)).dot(n);
+    const vec3 F = -coeff*un*n;
+    B.lubricationForce += F;
+    B.lubricationTorque += (x - B.pose.position()).cross(F);
+    A.lubricationForce -= F;
+    A.lubricationTorque -= (x - A.pose.position()).cross(F);
+    ++counters_.lubricatedPairs;
+}
+
+
 void demSolver::computeContacts()
 {
     if (settings_.overlap.h <= 0)
@@ -434,23 +551,39 @@ void demSolver::computeContacts()
         filter_.setReach(pairFilter::engineReach(engine_->type(), settings_.overlap));
         filter_.beginSweep();
     }
+    const bool lub = lubricating();
+    if (lub)
+    {
+        lubricationFilter_.beginSweep();
+    }
     for (const auto& p : candidatePairs())
     {
         const rigidBody& A = bodies_[p.first];
         const rigidBody& B = bodies_[p.second];
-        if
-        (
-            filter
-         && filter_.separated(p.first, p.second, *A.geometry, A.pose, *B.geometry, B.pose)
-        )
+        const size_t contactsFrom = contacts_.size();
+        if (A.dynamic() || B.dynamic())
         {
-            continue;
+            if
+            (
+                !filter
+             || !filter_.separated(p.first, p.second, *A.geometry, A.pose, *B.geometry, B.pose)
+            )
+            {
+                const bool touching = evaluatePair(p.first, p.second, next);
+                if (filter)
+                {
+                    filter_.engineResult(p.first, p.second, touching);
+                }
+            }
         }
-        const bool touching = evaluatePair(p.first, p.second, next);
-        if (filter)
+        if (lub)
         {
-            filter_.engineResult(p.first, p.second, touching);
+            lubricatePair(p.first, p.second, contactsFrom);
         }
+    }
+    if (lub)
+    {
+        lubricationFilter_.endSweep();
     }
     if (filter)
     {

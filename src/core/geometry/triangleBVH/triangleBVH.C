@@ -62,6 +62,52 @@ double segmentDistSqr(const vec3& p, const vec3& q, const vec3& u, const vec3& v
 }
 
 
+//- The closest points of the segments pq and uv (as segmentDistSqr)
+void segmentClosestPoints
+(
+    const vec3& p, const vec3& q, const vec3& u, const vec3& v, vec3& x, vec3& y
+)
+{
+    const vec3 d1 = q - p, d2 = v - u, r = p - u;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+    double s = 0, t = 0;
+    if (a > 0 || e > 0)
+    {
+        if (a <= 0)
+        {
+            t = std::clamp(f/e, 0.0, 1.0);
+        }
+        else
+        {
+            const double c = d1.dot(r);
+            if (e <= 0)
+            {
+                s = std::clamp(-c/a, 0.0, 1.0);
+            }
+            else
+            {
+                const double b = d1.dot(d2);
+                const double den = a*e - b*b;
+                s = den > 0 ? std::clamp((b*f - c*e)/den, 0.0, 1.0) : 0.0;
+                t = (b*s + f)/e;
+                if (t < 0)
+                {
+                    t = 0;
+                    s = std::clamp(-c/a, 0.0, 1.0);
+                }
+                else if (t > 1)
+                {
+                    t = 1;
+                    s = std::clamp((b - c)/a, 0.0, 1.0);
+                }
+            }
+        }
+    }
+    x = p + s*d1;
+    y = u + t*d2;
+}
+
+
 //- Whether segment pq crosses the plane of triangle abc inside it
 //  (inclusive, with a round-off margin). A segment in the triangle's plane
 //  is left to the edge and corner distances, which decide that case.
@@ -236,6 +282,199 @@ double triangleBVH::separation
         }
     }
     return std::min(best, cap) - slack;
+}
+
+
+double triangleBVH::triangleClosestPoints
+(
+    const std::array<vec3, 3>& a, const std::array<vec3, 3>& b,
+    vec3& pa, vec3& pb
+)
+{
+    for (int i = 0; i < 3; ++i)
+    {
+        const int j = (i + 1) % 3;
+        if
+        (
+            segmentCrossesTriangle(a[i], a[j], b[0], b[1], b[2])
+         || segmentCrossesTriangle(b[i], b[j], a[0], a[1], a[2])
+        )
+        {
+            pa = (a[0] + a[1] + a[2])/3;
+            pb = (b[0] + b[1] + b[2])/3;
+            return 0;
+        }
+    }
+    double d2 = std::numeric_limits<double>::max();
+    int feature;
+    auto keep = [&](const vec3& x, const vec3& y)
+    {
+        const double e = (x - y).squaredNorm();
+        if (e < d2)
+        {
+            d2 = e;
+            pa = x;
+            pb = y;
+        }
+    };
+    vec3 x, y;
+    for (int i = 0; i < 3; ++i)
+    {
+        keep(a[i], closestOnTriangle(a[i], b[0], b[1], b[2], feature));
+        keep(closestOnTriangle(b[i], a[0], a[1], a[2], feature), b[i]);
+        for (int k = 0; k < 3; ++k)
+        {
+            segmentClosestPoints(a[i], a[(i + 1) % 3], b[k], b[(k + 1) % 3], x, y);
+            keep(x, y);
+        }
+    }
+    return std::sqrt(d2);
+}
+
+
+triangleBVH::pairHit triangleBVH::closestPair
+(
+    const triangleBVH& A, const triangleBVH& B,
+    const mat3& R, const vec3& t, double cap
+)
+{
+    pairHit best;
+    best.distance = cap;
+    if (A.nodes_.empty() || B.nodes_.empty())
+    {
+        return best;
+    }
+    const mat3 absR = R.cwiseAbs();
+    double best2 = cap*cap;
+    auto distSqr = [&](int ia, int ib)
+    {
+        const node& na = A.nodes_[ia];
+        const node& nb = B.nodes_[ib];
+        const vec3 c = R*(0.5*(nb.lo + nb.hi)) + t;
+        const vec3 h = absR*(0.5*(nb.hi - nb.lo));
+        return boxDistSqr(na.lo, na.hi, c, h);
+    };
+    struct pairOfNodes { int a, b; };
+    std::vector<pairOfNodes> stack;
+    stack.reserve(128);
+    stack.push_back({0, 0});
+    std::array<vec3, 3> tb;
+    vec3 pa, pb;
+    while (!stack.empty())
+    {
+        const pairOfNodes pr = stack.back();
+        stack.pop_back();
+        if (distSqr(pr.a, pr.b) >= best2)
+        {
+            continue;
+        }
+        const node& na = A.nodes_[pr.a];
+        const node& nb = B.nodes_[pr.b];
+        if (na.count && nb.count)
+        {
+            for (int sb = nb.first; sb < nb.first + nb.count; ++sb)
+            {
+                for (int k = 0; k < 3; ++k)
+                {
+                    tb[k] = R*B.corners_[sb][k] + t;
+                }
+                for (int sa = na.first; sa < na.first + na.count; ++sa)
+                {
+                    const double d = triangleClosestPoints(A.corners_[sa], tb, pa, pb);
+                    if (d < best.distance)
+                    {
+                        best.distance = d;
+                        best2 = d*d;
+                        best.pointA = pa;
+                        best.pointB = pb;
+                        best.faceA = A.faceOfSlot_[sa];
+                        best.faceB = B.faceOfSlot_[sb];
+                        if (d == 0)
+                        {
+                            return best;
+                        }
+                    }
+                }
+            }
+            continue;
+        }
+        const bool splitA =
+            !na.count
+         && (nb.count || (na.hi - na.lo).squaredNorm() >= (nb.hi - nb.lo).squaredNorm());
+        const pairOfNodes p1 = splitA ? pairOfNodes{na.first, pr.b} : pairOfNodes{pr.a, nb.first};
+        const pairOfNodes p2 = splitA ? pairOfNodes{na.right, pr.b} : pairOfNodes{pr.a, nb.right};
+        const double d1 = distSqr(p1.a, p1.b), d2 = distSqr(p2.a, p2.b);
+        if (d1 <= d2)
+        {
+            if (d2 < best2) stack.push_back(p2);
+            if (d1 < best2) stack.push_back(p1);
+        }
+        else
+        {
+            if (d1 < best2) stack.push_back(p1);
+            if (d2 < best2) stack.push_back(p2);
+        }
+    }
+    return best;
+}
+
+
+bool triangleBVH::meanCornerBelow
+(
+    const vec3& n, double low, double band, vec3& mean
+) const
+{
+    if (nodes_.empty() || !(band > 0))
+    {
+        return false;
+    }
+    const double level = low + band;
+    const vec3 absN = n.cwiseAbs();
+    // A corner is stored once per triangle at it: each counted once
+    std::vector<std::array<double, 3>> found;
+    std::vector<int> stack{0};
+    while (!stack.empty())
+    {
+        const node& nd = nodes_[stack.back()];
+        stack.pop_back();
+        if (n.dot(0.5*(nd.lo + nd.hi)) - absN.dot(0.5*(nd.hi - nd.lo)) > level)
+        {
+            continue;
+        }
+        if (nd.count)
+        {
+            for (int s = nd.first; s < nd.first + nd.count; ++s)
+            {
+                for (const vec3& x : corners_[s])
+                {
+                    if (n.dot(x) < level)
+                    {
+                        found.push_back({x.x(), x.y(), x.z()});
+                    }
+                }
+            }
+            continue;
+        }
+        stack.push_back(nd.first);
+        stack.push_back(nd.right);
+    }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    vec3 sum = vec3::Zero();
+    double weight = 0;
+    for (const auto& c : found)
+    {
+        const vec3 x(c[0], c[1], c[2]);
+        const double w = std::max(0.0, 1 - (n.dot(x) - low)/band);
+        sum += w*x;
+        weight += w;
+    }
+    if (!(weight > 0))
+    {
+        return false;
+    }
+    mean = sum/weight;
+    return true;
 }
 
 

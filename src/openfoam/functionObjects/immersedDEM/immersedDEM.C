@@ -75,6 +75,12 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
     Pstream::listCombineGather(h, minEqOp<scalar>());
     Pstream::listCombineScatter(h);
 
+    // The lubrication's activation distance is measured in these cells
+    for (label i = 0; i < n; ++i)
+    {
+        state_.dem().bodies()[i].fluidCellSize = h[i] < GREAT ? h[i] : 0;
+    }
+
     const List<scalar>& projectedVolume = projection.projectedVolume();
     for (label i = 0; i < n; ++i)
     {
@@ -186,7 +192,39 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     UName_ = dict.getOrDefault<word>("U", "U");
+    setViscosity();
     return true;
+}
+
+
+void Foam::functionObjects::immersedDEM::setViscosity()
+{
+    // The lubrication below the resolved gap needs the fluid's dynamic
+    // viscosity: rhoInf times the solver's laminar nu
+    if (!state_.dem().settings().lubrication.active)
+    {
+        state_.dem().setFluidViscosity(0);
+        return;
+    }
+    const word transport("transportProperties");
+    const IOdictionary* t = mesh_.findObject<IOdictionary>(transport);
+    if (!t || !t->found("nu"))
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << ": the lubrication of "
+            << state_.properties().objectPath() << " needs the fluid's"
+            << " kinematic viscosity 'nu' in constant/" << transport
+            << " (not loaded by this solver, or no 'nu' there); switch it"
+            << " off with lubrication { active no; } there" << exit(FatalError);
+    }
+    const scalar nu = dimensionedScalar("nu", dimViscosity, *t).value();
+    if (!(nu > 0))
+    {
+        FatalIOErrorInFunction(*t)
+            << "Keyword 'nu' in " << t->objectPath() << " is " << nu
+            << ": it must be > 0" << nl << exit(FatalIOError);
+    }
+    state_.dem().setFluidViscosity(rhoInf_*nu);
 }
 
 

@@ -54,7 +54,14 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     immersedBoundaryForcingSettings forcing;
     forcing.penalty =
         immersedDEMChecks::positiveOrDefault(dict, "penalty", forcing.penalty);
-    forcing.sealedWalls = dict.getOrDefault<bool>("sealedWalls", forcing.sealedWalls);
+    // The film under a body next to a wall patch is the lubrication's when
+    // it is on (then the wall faces' pressure, an explicit coupling that
+    // can throw the body off the wall, is left out, as between two
+    // bodies), the wall faces' pressure's when it is off
+    forcing.sealedWalls = dict.getOrDefault<bool>
+    (
+        "sealedWalls", state_.dem().settings().lubrication.active
+    );
 
     const word surface
     (

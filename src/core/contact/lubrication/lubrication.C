@@ -1,0 +1,233 @@
+#include "lubrication.H"
+#include "sphereShape.H"
+#include "halfSpaceShape.H"
+#include "triangleMeshShape.H"
+#include "wallMeshShape.H"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace immersedDEM
+{
+
+namespace
+{
+
+const triangleBVH* trianglesOf(const shape& s)
+{
+    if (const auto* m = shapeAs<triangleMeshShape>(s))
+    {
+        return &m->distanceField().tree();
+    }
+    if (const auto* w = shapeAs<wallMeshShape>(s))
+    {
+        return &w->distanceField().tree();
+    }
+    return nullptr;
+}
+
+
+//- A sphere (centre c, radius r) as A against any shape B
+closestApproach sphereAgainst
+(
+    const vec3& c, double r, const shape& B, const bodyPose& pB, double cap
+)
+{
+    closestApproach a;
+    const surfacePoint sp = B.closest(pB, c);
+    a.gap = sp.distance - r;
+    if (!(a.gap < cap))
+    {
+        return a;
+    }
+    a.found = true;
+    // B's outward normal at its closest point points to the centre
+    a.normal = -sp.normal;
+    a.pointB = sp.point;
+    a.pointA = c + r*a.normal;
+    return a;
+}
+
+
+//- A plane (A) and a mesh (B): the lowest corners of B over the plane
+closestApproach planeAgainstMesh
+(
+    const bodyPose& pP, const triangleBVH& tB, const bodyPose& pB, double cap,
+    double band
+)
+{
+    closestApproach a;
+    const vec3 n = pP.vectorToWorld(vec3::UnitZ());
+    const vec3 nB = pB.vectorToBody(n);
+    const double h0 = n.dot(pB.position() - pP.position());
+    const double low = tB.minAlong(nB);
+    a.gap = h0 + low;
+    if (!(a.gap < cap))
+    {
+        return a;
+    }
+    a.found = true;
+    a.normal = n;
+    // The corners within a band above the lowest, weighted to fade out
+    // at its top: a face parallel to the plane gives its centre, an edge
+    // its middle, and the point moves continuously as the body turns (a
+    // point jumping between corners made the run depend on round-off)
+    vec3 mean;
+    if (!tB.meanCornerBelow(nB, low, band, mean))
+    {
+        return closestApproach();
+    }
+    a.pointB = pB.toWorld(mean);
+    a.pointA = a.pointB - n.dot(a.pointB - pP.position())*n;
+    return a;
+}
+
+} // End anonymous namespace
+
+
+double lubrication::coefficient
+(
+    double mu, double R, double h, double hAct, double hRough
+)
+{
+    if (!(h < hAct) || !(hAct > 0))
+    {
+        return 0;
+    }
+    const double g = std::max(h, std::min(hRough, hAct));
+    return 6*M_PI*mu*R*R*(1/g - 1/hAct);
+}
+
+
+closestApproach lubrication::approach
+(
+    const shape& A, const bodyPose& pA,
+    const shape& B, const bodyPose& pB,
+    double cap
+)
+{
+    const auto* sA = shapeAs<sphereShape>(A);
+    const auto* sB = shapeAs<sphereShape>(B);
+    if (sA)
+    {
+        return sphereAgainst(pA.position(), sA->radius(), B, pB, cap);
+    }
+    if (sB)
+    {
+        closestApproach a = sphereAgainst(pB.position(), sB->radius(), A, pA, cap);
+        std::swap(a.pointA, a.pointB);
+        a.normal = -a.normal;
+        return a;
+    }
+    const triangleBVH* tA = trianglesOf(A);
+    const triangleBVH* tB = trianglesOf(B);
+    if (shapeAs<halfSpaceShape>(A) && tB)
+    {
+        return planeAgainstMesh
+        (
+            pA, *tB, pB, cap, std::min(0.1*cap, 1e-2*B.boundingRadius())
+        );
+    }
+    if (shapeAs<halfSpaceShape>(B) && tA)
+    {
+        closestApproach a = planeAgainstMesh
+        (
+            pB, *tA, pA, cap, std::min(0.1*cap, 1e-2*A.boundingRadius())
+        );
+        std::swap(a.pointA, a.pointB);
+        a.normal = -a.normal;
+        return a;
+    }
+    closestApproach a;
+    if (!tA || !tB || tA->empty() || tB->empty())
+    {
+        return a;
+    }
+    // B's triangles in A's frame
+    const mat3 R = pA.rotation().transpose()*pB.rotation();
+    const vec3 t = pA.rotation().transpose()*(pB.position() - pA.position());
+    const triangleBVH::pairHit hit = triangleBVH::closestPair(*tA, *tB, R, t, cap);
+    if (hit.faceA < 0)
+    {
+        return a;
+    }
+    a.found = true;
+    a.gap = hit.distance;
+    a.pointA = pA.toWorld(hit.pointA);
+    a.pointB = pA.toWorld(hit.pointB);
+    if (a.gap > 0)
+    {
+        a.normal = (a.pointB - a.pointA)/(a.pointB - a.pointA).norm();
+
+        // Faces nearly parallel: the closest pair of triangles is any
+        // point of them; the film's centre is the weighted middle of the
+        // body's corners nearest the other (meanCornerBelow: a face's
+        // centre, continuous as the body turns), of both bodies' for two
+        // bodies
+        const double band =
+            std::min(0.1*cap, 1e-2*std::min(A.boundingRadius(), B.boundingRadius()));
+        vec3 sum = vec3::Zero();
+        int parts = 0;
+        const bool wallA = shapeAs<wallMeshShape>(A) != nullptr;
+        const bool wallB = shapeAs<wallMeshShape>(B) != nullptr;
+        auto face = [&](const triangleBVH& T, const bodyPose& p, const vec3& dir, const vec3& shift)
+        {
+            const vec3 d = p.vectorToBody(dir);
+            vec3 mean;
+            if (T.meanCornerBelow(d, T.minAlong(d), band, mean))
+            {
+                sum += p.toWorld(mean) + shift;
+                ++parts;
+            }
+        };
+        if (!wallB) face(*tB, pB, a.normal, -0.5*a.gap*a.normal);
+        if (!wallA) face(*tA, pA, -a.normal, 0.5*a.gap*a.normal);
+        if (parts == (wallA || wallB ? 1 : 2))
+        {
+            const vec3 middle = sum/double(parts);
+            a.pointA = middle - 0.5*a.gap*a.normal;
+            a.pointB = middle + 0.5*a.gap*a.normal;
+        }
+    }
+    // Inside the other (no triangles crossing, but a body through a wall
+    // or inside another): the caller takes the contact's geometry
+    if (a.gap > 0 && A.signedDistance(pA, a.pointB) < 0)
+    {
+        a.gap = 0;
+    }
+    return a;
+}
+
+
+mat3 lubrication::curvatureNear(const shape& S, const bodyPose& p, const vec3& x)
+{
+    if (shapeAs<halfSpaceShape>(S))
+    {
+        return mat3::Zero();
+    }
+    return S.closest(p, x).curvature;
+}
+
+
+double lubrication::gapRadius
+(
+    const mat3& KA, const mat3& KB, const vec3& n, double Rcap
+)
+{
+    // A basis of the tangent plane
+    const vec3 a = std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY();
+    const vec3 t1 = n.cross(a).normalized();
+    const vec3 t2 = n.cross(t1);
+    const mat3 K = KA + KB;
+    Eigen::Matrix2d k;
+    k << t1.dot(K*t1), 0.5*(t1.dot(K*t2) + t2.dot(K*t1)),
+         0.5*(t1.dot(K*t2) + t2.dot(K*t1)), t2.dot(K*t2);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(k, Eigen::EigenvaluesOnly);
+    const double kMin = 1/Rcap;
+    const double k1 = std::max(eig.eigenvalues()(0), kMin);
+    const double k2 = std::max(eig.eigenvalues()(1), kMin);
+    return 1/std::sqrt(k1*k2);
+}
+
+} // End namespace immersedDEM
