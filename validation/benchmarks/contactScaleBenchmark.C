@@ -24,12 +24,28 @@ Description
     3. Memory per body: the heap in use (mallinfo2) per body for N bodies
        of one shared surface (each body a pose), and for bodies each
        reading its own copy of the surface (the reader before issue 20).
+    4. Reuse between sub-steps (demSettings::reuseContacts): lasting
+       contacts run by the DEM (automatic step, glass), with reuse off and
+       on side by side: the contact CPU per contact per sub-step, the
+       fraction of sub-steps that evaluate the pair in full, and the
+       largest volume error of the reused contacts against a full
+       evaluation at the same poses (a third run, checked every sub-step):
+         - the new user's block: a glass cube (10 mm) resting face down on
+           the floor of a mesh wall (an open box patch) under gravity,
+           placed at the depth that carries its weight, default resolution
+           (h = d/20, level 4); the same rocking (1e-3 rad/s at the start);
+         - the same cube at rest on a plane;
+         - two icosahedra (h = d/10, level 3), B pressed onto fixed A
+           (a load of 1000 g along the centre line) and sliding across
+           at 5 mm/s;
+         - two lumpy stars (h = d/10, level 1), likewise.
 
 Usage
     contactScaleBenchmark [N] [--stl=file] [--steps=n]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
-    steps   sub-steps with the filter on (default 200; off: steps/10)
+    steps   sub-steps with the filter on (default 200; off: steps/10);
+            part 4 runs 10 steps with reuse (1 without) per step here
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -38,6 +54,7 @@ Usage
 #include "wallMeshShape.H"
 #include "primitiveMeshes.H"
 #include "coreError.H"
+#include "overlapEngine.H"
 
 #include <malloc.h>
 
@@ -97,6 +114,7 @@ result lattice
     demSettings s;
     s.overlap = {d/10, 1};
     s.rejectSeparated = filter;
+    s.reuseContacts = false;
     s.deltaT = 1e-5;
     demSolver dem({glass}, s);
 
@@ -167,13 +185,14 @@ result lattice
 result onePair
 (
     const std::shared_ptr<const triangleMeshShape>& shape, const overlapSettings& o,
-    double depth, int steps, bool filter, double& volume
+    double depth, int steps, bool filter, double& volume, bool reuse = false
 )
 {
     contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
     demSettings s;
     s.overlap = o;
     s.rejectSeparated = filter;
+    s.reuseContacts = reuse;
     s.deltaT = 1e-9;      // bodies hardly move: the same contact every step
     demSolver dem({glass}, s);
     // Along x: the support of each body from its bounding box in the
@@ -212,6 +231,97 @@ result onePair
     r.usPerStep = 1e6*(cpuSeconds() - c0)/steps;
     r.contacts = contacts;
     r.filter = dem.filterWork();
+    return r;
+}
+
+
+// 4. A lasting contact run by the DEM, reuse off or on
+struct reuseResult
+{
+    double usPerContact = 0;    //!< contact CPU per contact per sub-step
+    double fullFraction = 0;    //!< engine calls per contact per sub-step
+    double maxVolumeError = 0;  //!< reused against full, relative
+    double meanVolume = 0;
+    double dt = 0;
+    long steps = 0;
+};
+
+struct reuseCase
+{
+    std::string name;
+    std::shared_ptr<const shape> A, B;
+    bool wallA = false;
+    bodyPose pA, pB;
+    vec3 velocityB = vec3::Zero();
+    vec3 omegaB = vec3::Zero();
+    vec3 load = vec3::Zero();      //!< acceleration of B (gravity)
+    //- B placed at the depth (along -z) where the contact carries its
+    //  weight (a flat face: the force is proportional to the depth)
+    bool atRest = false;
+    overlapSettings o;             //!< h = 0: the default resolution
+};
+
+reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
+{
+    contactMaterial glass{"glass", 6e10, 0.24, 0.9, 0.3};
+    demSettings s;
+    s.overlap = c.o;
+    s.gravity = c.load;
+    s.reuseContacts = reuse;
+    demSolver dem({glass}, s);
+    rigidBody A("A", c.A, 2500);
+    A.motion = motionType::fixed;
+    A.pose = c.pA;
+    dem.addBody(A, c.wallA);
+    rigidBody B("B", c.B, 2500);
+    B.pose = c.pB;
+    B.velocity = c.velocityB;
+    B.angularVelocity = c.omegaB;
+    dem.addBody(B);
+    if (c.atRest)
+    {
+        const double trial = 1e-10;
+        rigidBody& b = dem.bodies()[1];
+        const vec3 x = b.pose.position();
+        b.pose.setPosition(x - trial*vec3::UnitZ());
+        dem.computeContacts();
+        const double depth = trial*b.mass()*c.load.norm()/b.contactForce.z();
+        b.pose.setPosition(x - depth*vec3::UnitZ());
+        dem.invalidate();
+    }
+    const auto engine = overlapEngine::New(s.overlapMethod);
+    reuseResult r;
+    r.dt = dem.timeStep();
+    dem.computeContacts();
+    const long e0 = dem.work().pairEvaluations;
+    long contacts = 0;
+    double cpu = 0;
+    double vSum = 0;
+    for (int i = 0; i < steps; ++i)
+    {
+        const double c0 = cpuSeconds();
+        dem.step(r.dt);
+        cpu += cpuSeconds() - c0;
+        double V = 0;
+        for (const contactRecord& k : dem.contacts()) V += k.region.volume;
+        contacts += dem.contacts().empty() ? 0 : 1;
+        vSum += V;
+        if (check)
+        {
+            const rigidBody& a = dem.bodies()[0];
+            const rigidBody& b = dem.bodies()[1];
+            const double Vfull =
+                engine->evaluate(*a.geometry, a.pose, *b.geometry, b.pose, dem.settings().overlap).volume();
+            if (Vfull > 0 || V > 0)
+            {
+                r.maxVolumeError = std::max(r.maxVolumeError, std::abs(V - Vfull)/std::max(V, Vfull));
+            }
+        }
+    }
+    r.steps = steps;
+    r.usPerContact = 1e6*cpu/std::max(1L, contacts);
+    r.fullFraction = double(dem.work().pairEvaluations - e0)/std::max(1L, contacts);
+    r.meanVolume = vSum/steps;
     return r;
 }
 
@@ -306,12 +416,96 @@ int main(int argc, char* argv[])
             const int n = std::max(10, steps/10);
             const result a0 = onePair(ico, {di/10, 3}, 1e-4, n, false, v0);
             const result a1 = onePair(ico, {di/10, 3}, 1e-4, n, true, v1);
-            std::printf("  icosahedra (20 faces), 0.1 mm deep, h = d/10 level 3, V = %.4g m3: off %8.1f us, on %8.1f us (target <= 100 us)\n",
-                v0, a0.usPerStep, a1.usPerStep);
+            const result a2 = onePair(ico, {di/10, 3}, 1e-4, n, true, v1, true);
+            std::printf("  icosahedra (20 faces), 0.1 mm deep, h = d/10 level 3, V = %.4g m3: off %8.1f us, on %8.1f us, on with reuse %8.1f us (target <= 100 us)\n",
+                v0, a0.usPerStep, a1.usPerStep, a2.usPerStep);
             const result b0 = onePair(star, {d/10, 1}, 2e-5, n, false, v0);
             const result b1 = onePair(star, {d/10, 1}, 2e-5, n, true, v1);
-            std::printf("  lumpy stars (5120 faces), h = d/10 level 1, V = %.4g m3:           off %8.1f us, on %8.1f us (target <= 300 us)\n",
-                v0, b0.usPerStep, b1.usPerStep);
+            const result b2 = onePair(star, {d/10, 1}, 2e-5, n, true, v1, true);
+            std::printf("  lumpy stars (5120 faces), h = d/10 level 1, V = %.4g m3:           off %8.1f us, on %8.1f us, on with reuse %8.1f us (target <= 300 us)\n",
+                v0, b0.usPerStep, b1.usPerStep, b2.usPerStep);
+            std::printf("  (filter off / on: reuse off; at 1e-9 s per sub-step the pair is at rest: reuse is bounded by its count, %d)\n",
+                demSettings().reuseMaxSteps);
+        }
+
+        // 4. Reuse between sub-steps
+        {
+            std::printf("\nReuse between sub-steps: a lasting contact run by the DEM (glass, automatic step);\n");
+            std::printf("  contact CPU per contact per sub-step, reuse off / on, the fraction of sub-steps evaluated in full,\n");
+            std::printf("  and the largest volume error of the run with reuse against a full evaluation at the same poses\n");
+            std::printf("  %-34s %9s %6s %6s %11s %11s %7s %9s %10s\n",
+                "contact", "dt [s]", "off", "on", "off [us]", "on [us]", "ratio", "full [%]", "maxErr [%]");
+            std::shared_ptr<const triangleMeshShape> cube
+            (
+                new triangleMeshShape(primitiveMeshes::box(vec3::Constant(0.005)), "cube")
+            );
+            std::shared_ptr<const triangleMeshShape> ico
+            (
+                new triangleMeshShape(primitiveMeshes::icosphere(0.005, 0), "icosahedron")
+            );
+            const double dIco = 2*std::cbrt(3*ico->volume()/(4*M_PI));
+            const double g = 9.81;
+            const quat qb = bodyPose::axisAngle(vec3(0.3, 1, 0.2), 0.7);
+            std::vector<reuseCase> cases;
+            {
+                reuseCase c;
+                c.name = "cube face down on a mesh wall";
+                c.A = std::make_shared<wallMeshShape>
+                (
+                    primitiveMeshes::openBox(vec3(-0.03, -0.03, 0), vec3(0.03, 0.03, 0.06), 4), "tank", 0.01
+                );
+                c.wallA = true;
+                c.B = cube;
+                c.pB = bodyPose(vec3(0, 0, 0.005), quat::Identity());
+                c.load = vec3(0, 0, -g);
+                c.atRest = true;
+                cases.push_back(c);
+                c.name = "cube as above, rocking 1e-3 rad/s";
+                c.omegaB = vec3(1e-3, 0, 0);
+                cases.push_back(c);
+                c.name = "cube face down on a plane";
+                c.omegaB = vec3::Zero();
+                c.A = std::make_shared<halfSpaceShape>();
+                c.pA = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
+                cases.push_back(c);
+            }
+            auto pressed = [&](const std::string& name, std::shared_ptr<const triangleMeshShape> sh, const overlapSettings& o)
+            {
+                const auto exact = overlapEngine::New("exact");
+                double lo = 0, hi = 4*sh->boundingRadius();
+                for (int i = 0; i < 60; ++i)
+                {
+                    const double m = 0.5*(lo + hi);
+                    const contactGeometry cg = exact->evaluate
+                    (
+                        *sh, bodyPose(vec3::Zero(), quat::Identity()), *sh, bodyPose(vec3(m, 0, 0), qb), o
+                    );
+                    (cg.volume() > 0 ? lo : hi) = m;
+                }
+                reuseCase c;
+                c.name = name;
+                c.A = sh;
+                c.B = sh;
+                c.o = o;
+                c.pB = bodyPose(vec3(lo, 0, 0), qb);
+                c.velocityB = vec3(0, 0.005, 0);
+                c.load = vec3(-1000*g, 0, 0);
+                return c;
+            };
+            cases.push_back(pressed("icosahedra pressed, sliding", ico, {dIco/10, 3}));
+            cases.push_back(pressed("lumpy stars pressed, sliding", star, {d/10, 1}));
+            const int nOn = steps*10;
+            const int nOff = std::max(10, steps);
+            for (const reuseCase& c : cases)
+            {
+                const reuseResult off = runReuse(c, false, nOff, false);
+                const reuseResult on = runReuse(c, true, nOn, false);
+                const reuseResult chk = runReuse(c, true, nOn, true);
+                std::printf("  %-34s %9.3g %6d %6d %11.1f %11.1f %7.1f %9.2f %10.4f\n",
+                    c.name.c_str(), on.dt, nOff, nOn, off.usPerContact, on.usPerContact,
+                    off.usPerContact/on.usPerContact, 100*on.fullFraction, 100*chk.maxVolumeError);
+            }
+            std::printf("  targets: icosahedra <= 100 us, lumpy stars <= 300 us per contact per sub-step at <= 0.5%% volume error\n");
         }
     }
     catch (const coreError& e)
