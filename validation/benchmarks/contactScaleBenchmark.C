@@ -41,11 +41,12 @@ Description
          - two lumpy stars (h = d/10, level 1), likewise.
 
 Usage
-    contactScaleBenchmark [N] [--stl=file] [--steps=n]
+    contactScaleBenchmark [N] [--stl=file] [--steps=n] [--reuse-only]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
     steps   sub-steps with the filter on (default 200; off: steps/10);
             part 4 runs 10 steps with reuse (1 without) per step here
+    reuse-only  part 4 only
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -332,6 +333,7 @@ int main(int argc, char* argv[])
 {
     int N = 27;
     int steps = 200;
+    bool reuseOnly = false;
     std::string stl = std::string(__FILE__);
     stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
         + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
@@ -339,6 +341,7 @@ int main(int argc, char* argv[])
     {
         const std::string a = argv[i];
         if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
+        else if (a == "--reuse-only") reuseOnly = true;
         else if (a.rfind("--steps=", 0) == 0) steps = std::max(10, std::atoi(a.c_str() + 8));
         else if (a[0] != '-') N = std::max(1, std::atoi(a.c_str()));
         else
@@ -350,11 +353,16 @@ int main(int argc, char* argv[])
 
     try
     {
-        // 3. Memory first, on a clean heap
-        const size_t h0 = heapInUse();
         std::shared_ptr<const triangleMeshShape> star(triangleMeshShape::fromFile(stl));
+        double d = 2*std::cbrt(3*star->volume()/(4*M_PI));
+        if (!reuseOnly)
+        {
+        // 3. Memory: a second copy of the surface
+        const size_t h0 = heapInUse();
+        std::unique_ptr<triangleMeshShape> copy(triangleMeshShape::fromFile(stl));
         const size_t h1 = heapInUse();
         const double perSurface = double(h1 - h0);
+        copy.reset();
         const int M = 64;
         double perSharedBody = 0;
         {
@@ -380,7 +388,6 @@ int main(int argc, char* argv[])
         std::printf("  shared surface, per extra body (after) %9.2f kB   (target <= 100 kB)\n", perSharedBody/1024);
 
         // 1. No contact
-        double d = 0;
         const int stepsOff = std::max(2, steps/10);
         const double t0 = cpuSeconds();
         const result off = lattice(star, N, stepsOff, false, d);
@@ -428,6 +435,7 @@ int main(int argc, char* argv[])
                 demSettings().reuseMaxSteps);
         }
 
+        }
         // 4. Reuse between sub-steps
         {
             std::printf("\nReuse between sub-steps: a lasting contact run by the DEM (glass, automatic step);\n");

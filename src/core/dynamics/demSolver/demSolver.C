@@ -322,7 +322,7 @@ bool demSolver::reusable(int ia, int ib) const
 bool demSolver::reused
 (
     const reuseRecord& rec, int ia, int ib, contactGeometry& g,
-    bool anyMotion, double& moved
+    bool anyMotion, double& moved, vec3* u0
 ) const
 {
     if (!anyMotion && rec.count >= settings_.reuseMaxSteps)
@@ -372,7 +372,12 @@ bool demSolver::reused
     for (const contactRegion& r0 : rec.regions)
     {
         const vec3 u = move(r0.point);
-        const vec3 S = r0.areaVector.squaredNorm() > 0 ? r0.areaVector : vec3(r0.area*r0.normal);
+        vec3 S = r0.areaVector.squaredNorm() > 0 ? r0.areaVector : vec3(r0.area*r0.normal);
+        if (rec.regions.size() == 1)
+        {
+            S += A0.vectorToWorld(rec.slope);
+            if (u0) *u0 = u;
+        }
         // dV/du_B = -S, dV/dtheta_B = -M about the point (S the integral
         // of A's outward normal over A's surface inside B)
         const double V = r0.volume - S.dot(u) - r0.areaMoment.dot(dtheta);
@@ -583,6 +588,7 @@ void demSolver::computeContacts()
             }
             const auto it = reuse_.find(p);
             double fraction = settings_.reuseFraction;
+            vec3 slope = vec3::Zero();
             if (it != reuse_.end())
             {
                 // The error of the last record carried to here, where it
@@ -592,14 +598,31 @@ void demSolver::computeContacts()
                 fraction = it->second.fraction;
                 contactGeometry carried;
                 double moved = 0;
+                vec3 u = vec3::Zero();
                 if
                 (
                     it->second.regions.size() == g.regions.size()
-                 && reused(it->second, p.first, p.second, carried, true, moved)
+                 && reused(it->second, p.first, p.second, carried, true, moved, &u)
                  && moved > 0 && it->second.depth > 0
                 )
                 {
                     const double V = g.volume();
+                    // The secant update of a single region's slope along
+                    // the motion u (A's body frame), when the motion is
+                    // well above round-off; at most half of |S|
+                    if (g.regions.size() == 1 && moved > 0.25*it->second.fraction*it->second.depth && u.squaredNorm() > 0)
+                    {
+                        const contactRegion& r0 = it->second.regions[0];
+                        const double e = V - carried.volume();
+                        vec3 c = it->second.slope - e*it->second.poseA.vectorToBody(u)/u.squaredNorm();
+                        const double Sn = r0.areaVector.squaredNorm() > 0 ? r0.areaVector.norm() : r0.area;
+                        if (c.norm() > 0.5*Sn) c *= 0.5*Sn/c.norm();
+                        slope = c;
+                    }
+                    else if (g.regions.size() == 1)
+                    {
+                        slope = it->second.slope;
+                    }
                     const double error = std::abs(carried.volume() - V)/V;
                     const double perDepth = error/(moved/it->second.depth);
                     // (an error far below the tolerance says nothing of
@@ -620,6 +643,7 @@ void demSolver::computeContacts()
             rec.regions = g.regions;
             rec.depth = depth;
             rec.fraction = fraction;
+            rec.slope = slope;
             rec.count = 0;
             rec.sweep = sweep_;
         }
