@@ -539,7 +539,6 @@ void demSolver::computeContacts()
         filter_.beginSweep();
     }
     const bool full = fullNext_ || !settings_.reuseContacts;
-    fullNext_ = false;
     ++sweep_;
     contactGeometry g;
     for (const auto& p : candidatePairs())
@@ -589,7 +588,9 @@ void demSolver::computeContacts()
             const auto it = reuse_.find(p);
             double fraction = settings_.reuseFraction;
             vec3 slope = vec3::Zero();
-            if (it != reuse_.end())
+            // (a full evaluation forced at the end of an advance starts
+            // the pair afresh, as a restart from there does)
+            if (it != reuse_.end() && !full)
             {
                 // The error of the last record carried to here, where it
                 // was given up, sets the fraction of the next: the error
@@ -772,6 +773,7 @@ void demSolver::step(double dt)
     // at the half step
     loadTime_ = time_ + 0.5*dt;
     computeContacts();
+    fullNext_ = false;
     loadTime_ = time_ + dt;
     for (rigidBody& b : bodies_)
     {
