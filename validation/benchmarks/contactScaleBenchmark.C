@@ -42,11 +42,15 @@ Description
 
 Usage
     contactScaleBenchmark [N] [--stl=file] [--steps=n] [--reuse-only]
+        [--reuse-case=word] [--reuse-tolerance=x] [--reuse-fraction=x]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
     steps   sub-steps with the filter on (default 200; off: steps/10);
             part 4 runs 10 steps with reuse (1 without) per step here
     reuse-only  part 4 only
+    reuse-case  part 4: only the contacts whose name holds the word
+    reuse-tolerance  demSettings::reuseTolerance (default 0.0025)
+    reuse-fraction   demSettings::reuseFraction, the first (default 0.02)
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -242,6 +246,7 @@ struct reuseResult
     double usPerContact = 0;    //!< contact CPU per contact per sub-step
     double fullFraction = 0;    //!< engine calls per sub-step
     double contactFraction = 0; //!< sub-steps with a contact
+    double maxFullJump = 0;     //!< of the full volume from one sub-step to the next
     double maxVolumeError = 0;  //!< reused against full, relative
     double meanVolume = 0;
     double dt = 0;
@@ -267,10 +272,16 @@ struct reuseCase
     bool check = true;
 };
 
+double reuseToleranceOption = -1;
+double reuseFractionOption = -1;
+std::string reuseCaseOption;
+
 reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
 {
     contactMaterial glass{"glass", 6e10, 0.24, 0.9, 0.3};
     demSettings s;
+    if (reuseToleranceOption > 0) s.reuseTolerance = reuseToleranceOption;
+    if (reuseFractionOption > 0) s.reuseFraction = reuseFractionOption;
     s.overlap = c.o;
     s.gravity = c.load;
     s.reuseContacts = reuse;
@@ -325,6 +336,7 @@ reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
     long contacts = 0;
     double cpu = 0;
     double vSum = 0;
+    double lastFull = 0;
     for (int i = 0; i < steps; ++i)
     {
         const double c0 = cpuSeconds();
@@ -342,8 +354,19 @@ reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
                 engine->evaluate(*a.geometry, a.pose, *b.geometry, b.pose, dem.settings().overlap).volume();
             if (Vfull > 0 || V > 0)
             {
-                r.maxVolumeError = std::max(r.maxVolumeError, std::abs(V - Vfull)/std::max(V, Vfull));
+                const double e = std::abs(V - Vfull)/std::max(V, Vfull);
+                if (std::getenv("REUSE_DEBUG") && e > 0.005)
+                {
+                    std::printf("step %d error %.4f V %.6e full %.6e evaluations %ld regions %zu\n",
+                        i, e, V, Vfull, dem.work().pairEvaluations, dem.contacts().size());
+                }
+                r.maxVolumeError = std::max(r.maxVolumeError, e);
             }
+            if (i > 0 && Vfull > 0 && lastFull > 0)
+            {
+                r.maxFullJump = std::max(r.maxFullJump, std::abs(Vfull - lastFull)/Vfull);
+            }
+            lastFull = Vfull;
         }
     }
     r.steps = steps;
@@ -370,6 +393,9 @@ int main(int argc, char* argv[])
         const std::string a = argv[i];
         if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
         else if (a == "--reuse-only") reuseOnly = true;
+        else if (a.rfind("--reuse-tolerance=", 0) == 0) reuseToleranceOption = std::atof(a.c_str() + 18);
+        else if (a.rfind("--reuse-fraction=", 0) == 0) reuseFractionOption = std::atof(a.c_str() + 17);
+        else if (a.rfind("--reuse-case=", 0) == 0) reuseCaseOption = a.substr(13);
         else if (a.rfind("--steps=", 0) == 0) steps = std::max(10, std::atoi(a.c_str() + 8));
         else if (a[0] != '-') N = std::max(1, std::atoi(a.c_str()));
         else
@@ -469,8 +495,8 @@ int main(int argc, char* argv[])
             std::printf("\nReuse between sub-steps: a lasting contact run by the DEM (glass, automatic step);\n");
             std::printf("  contact CPU per contact per sub-step, reuse off / on, the fraction of sub-steps evaluated in full,\n");
             std::printf("  and the largest volume error of the run with reuse against a full evaluation at the same poses\n");
-            std::printf("  %-34s %9s %6s %6s %11s %11s %7s %9s %9s %10s\n",
-                "contact", "dt [s]", "off", "on", "off [us]", "on [us]", "ratio", "full [%]", "touch [%]", "maxErr [%]");
+            std::printf("  %-34s %9s %6s %6s %11s %11s %7s %9s %9s %10s %11s\n",
+                "contact", "dt [s]", "off", "on", "off [us]", "on [us]", "ratio", "full [%]", "touch [%]", "maxErr [%]", "fullJump[%]");
             std::shared_ptr<const triangleMeshShape> cube
             (
                 new triangleMeshShape(primitiveMeshes::box(vec3::Constant(0.005)), "cube")
@@ -537,6 +563,7 @@ int main(int argc, char* argv[])
             cases.push_back(pressed("lumpy stars pressed, sliding", star, {d/10, 1}));
             for (reuseCase& c : cases)
             {
+                if (!reuseCaseOption.empty() && c.name.find(reuseCaseOption) == std::string::npos) continue;
                 if (c.nOn == 0)
                 {
                     c.nOn = steps*10;
@@ -544,13 +571,18 @@ int main(int argc, char* argv[])
                 }
                 const reuseResult off = runReuse(c, false, c.nOff, false);
                 const reuseResult on = runReuse(c, true, c.nOn, false);
-                double err = -1;
-                if (c.check) err = runReuse(c, true, c.nOn, true).maxVolumeError;
+                double err = -1, jump = -1;
+                if (c.check)
+                {
+                    const reuseResult chk = runReuse(c, true, c.nOn, true);
+                    err = chk.maxVolumeError;
+                    jump = chk.maxFullJump;
+                }
                 std::printf("  %-34s %9.3g %6d %6d %11.1f %11.1f %7.1f %9.2f %9.1f ",
                     c.name.c_str(), on.dt, c.nOff, c.nOn, off.usPerContact, on.usPerContact,
                     off.usPerContact/on.usPerContact, 100*on.fullFraction, 100*on.contactFraction);
-                if (err >= 0) std::printf("%10.4f\n", 100*err);
-                else std::printf("%10s\n", "-");
+                if (err >= 0) std::printf("%10.4f %11.4f\n", 100*err, 100*jump);
+                else std::printf("%10s %11s\n", "-", "-");
                 std::fflush(stdout);
             }
             std::printf("  (-: not checked; a full evaluation of the cube at the default resolution takes seconds:\n"

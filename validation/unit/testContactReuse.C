@@ -324,8 +324,11 @@ TEST(contactReuse, cubeRockingOnPlane)
 // Two lumpy stars (5,120 triangles, h = d/10, level 1) pressed together,
 // sliding and turning. At this coarse resolution the engine's S is not the
 // slope of its own volume along the motion (the volume grows 1.5 times
-// slower than -S.u predicts): without the secant correction of the slope
-// 159 of the 200 steps were full evaluations, with it 33
+// slower than -S.u predicts). The secant correction c of the slope shows
+// it, and the motion is then bounded as if S were off by |c| in any
+// direction: most of these (fast) steps are full evaluations, and the
+// error stays within the tolerance (without that bound the DEM run of
+// contactScaleBenchmark reached 1.47%)
 TEST(contactReuse, lumpyStarsSliding)
 {
     const auto star = lumpyStar();
@@ -343,7 +346,7 @@ TEST(contactReuse, lumpyStarsSliding)
             pB = bodyPose(vec3(x - 5e-6*s, 2e-5*s, 0), bodyPose::axisAngle(vec3(0, 1, 1), 0.002*s)*qIco);
         }
     );
-    expectWithinTolerance(c, 0.3);
+    expectWithinTolerance(c, 1.0);
 }
 
 

@@ -633,6 +633,15 @@ void demSolver::computeContacts()
                       ? 2*fraction
                       : std::min(2*fraction, settings_.reuseTolerance/perDepth);
                 }
+                // The engine's S is known off by |c| along one direction:
+                // it may be so along any, and the motion is bounded so
+                // that such an error stays within the tolerance too
+                if (g.regions.size() == 1 && slope.squaredNorm() > 0)
+                {
+                    const contactRegion& r = g.regions[0];
+                    const double Sn = r.areaVector.squaredNorm() > 0 ? r.areaVector.norm() : r.area;
+                    fraction = std::min(fraction, settings_.reuseTolerance*Sn/slope.norm());
+                }
                 fraction = std::max
                 (
                     settings_.reuseFractionMin, std::min(settings_.reuseFractionMax, fraction)
