@@ -24,12 +24,33 @@ Description
     3. Memory per body: the heap in use (mallinfo2) per body for N bodies
        of one shared surface (each body a pose), and for bodies each
        reading its own copy of the surface (the reader before issue 20).
+    4. Reuse between sub-steps (demSettings::reuseContacts): lasting
+       contacts run by the DEM (automatic step, glass), with reuse off and
+       on side by side: the contact CPU per contact per sub-step, the
+       fraction of sub-steps that evaluate the pair in full, and the
+       largest volume error of the reused contacts against a full
+       evaluation at the same poses (a third run, checked every sub-step):
+         - the new user's block: a glass cube (10 mm) resting face down on
+           the floor of a mesh wall (an open box patch) under gravity,
+           placed at the depth that carries its weight, default resolution
+           (h = d/20, level 4); the same rocking (1e-3 rad/s at the start);
+         - the same cube at rest on a plane;
+         - two icosahedra (h = d/10, level 3), B pressed onto fixed A
+           (a load of 1000 g along the centre line, placed at the depth
+           that carries it) and sliding across at 5 mm/s;
+         - two lumpy stars (h = d/10, level 1), likewise.
 
 Usage
-    contactScaleBenchmark [N] [--stl=file] [--steps=n]
+    contactScaleBenchmark [N] [--stl=file] [--steps=n] [--reuse-only]
+        [--reuse-case=word] [--reuse-tolerance=x] [--reuse-fraction=x]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
-    steps   sub-steps with the filter on (default 200; off: steps/10)
+    steps   sub-steps with the filter on (default 200; off: steps/10);
+            part 4 runs 10 steps with reuse (1 without) per step here
+    reuse-only  part 4 only
+    reuse-case  part 4: only the contacts whose name holds the word
+    reuse-tolerance  demSettings::reuseTolerance (default 0.0025)
+    reuse-fraction   demSettings::reuseFraction, the first (default 0.02)
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -38,6 +59,7 @@ Usage
 #include "wallMeshShape.H"
 #include "primitiveMeshes.H"
 #include "coreError.H"
+#include "overlapEngine.H"
 
 #include <malloc.h>
 
@@ -97,6 +119,7 @@ result lattice
     demSettings s;
     s.overlap = {d/10, 1};
     s.rejectSeparated = filter;
+    s.reuseContacts = false;
     s.deltaT = 1e-5;
     demSolver dem({glass}, s);
 
@@ -167,13 +190,14 @@ result lattice
 result onePair
 (
     const std::shared_ptr<const triangleMeshShape>& shape, const overlapSettings& o,
-    double depth, int steps, bool filter, double& volume
+    double depth, int steps, bool filter, double& volume, bool reuse = false
 )
 {
     contactMaterial glass{"glass", 1e7, 0.3, 0.5, 0.4};
     demSettings s;
     s.overlap = o;
     s.rejectSeparated = filter;
+    s.reuseContacts = reuse;
     s.deltaT = 1e-9;      // bodies hardly move: the same contact every step
     demSolver dem({glass}, s);
     // Along x: the support of each body from its bounding box in the
@@ -215,6 +239,144 @@ result onePair
     return r;
 }
 
+
+// 4. A lasting contact run by the DEM, reuse off or on
+struct reuseResult
+{
+    double usPerContact = 0;    //!< contact CPU per contact per sub-step
+    double fullFraction = 0;    //!< engine calls per sub-step
+    double contactFraction = 0; //!< sub-steps with a contact
+    double maxFullJump = 0;     //!< of the full volume from one sub-step to the next
+    double maxVolumeError = 0;  //!< reused against full, relative
+    double meanVolume = 0;
+    double dt = 0;
+    long steps = 0;
+};
+
+struct reuseCase
+{
+    std::string name;
+    std::shared_ptr<const shape> A, B;
+    bool wallA = false;
+    bodyPose pA, pB;
+    vec3 velocityB = vec3::Zero();
+    vec3 omegaB = vec3::Zero();
+    vec3 load = vec3::Zero();      //!< acceleration of B (gravity)
+    //- B placed at the depth (along -z) where the contact carries its
+    //  weight (a flat face: the force is proportional to the depth)
+    bool atRest = false;
+    bool flat = false;
+    overlapSettings o;             //!< h = 0: the default resolution
+    //- Sub-steps reuse off, on; check: a third run, checked every step
+    int nOff = 0, nOn = 0;
+    bool check = true;
+};
+
+double reuseToleranceOption = -1;
+double reuseFractionOption = -1;
+std::string reuseCaseOption;
+
+reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
+{
+    contactMaterial glass{"glass", 6e10, 0.24, 0.9, 0.3};
+    demSettings s;
+    if (reuseToleranceOption > 0) s.reuseTolerance = reuseToleranceOption;
+    if (reuseFractionOption > 0) s.reuseFraction = reuseFractionOption;
+    s.overlap = c.o;
+    s.gravity = c.load;
+    s.reuseContacts = reuse;
+    demSolver dem({glass}, s);
+    rigidBody A("A", c.A, 2500);
+    A.motion = motionType::fixed;
+    A.pose = c.pA;
+    dem.addBody(A, c.wallA);
+    rigidBody B("B", c.B, 2500);
+    B.pose = c.pB;
+    B.velocity = c.velocityB;
+    B.angularVelocity = c.omegaB;
+    dem.addBody(B);
+    if (c.atRest)
+    {
+        // Along the load: a flat face (the force proportional to the
+        // depth) from one trial; otherwise by bisection on the force
+        const vec3 dir = c.load.normalized();
+        rigidBody& b = dem.bodies()[1];
+        const vec3 x = b.pose.position();
+        const double weight = b.mass()*c.load.norm();
+        auto force = [&](double depth)
+        {
+            b.pose.setPosition(x + depth*dir);
+            dem.computeContacts();
+            return -b.contactForce.dot(dir);
+        };
+        double depth = 0;
+        if (c.flat)
+        {
+            const double trial = 1e-10;
+            depth = trial*weight/force(trial);
+        }
+        else
+        {
+            double lo = 0, hi = 0.1*c.B->boundingRadius();
+            for (int i = 0; i < 40; ++i)
+            {
+                const double m = 0.5*(lo + hi);
+                (force(m) < weight ? lo : hi) = m;
+            }
+            depth = 0.5*(lo + hi);
+        }
+        b.pose.setPosition(x + depth*dir);
+        dem.invalidate();
+    }
+    const auto engine = overlapEngine::New(s.overlapMethod);
+    reuseResult r;
+    r.dt = dem.timeStep();
+    dem.computeContacts();
+    const long e0 = dem.work().pairEvaluations;
+    long contacts = 0;
+    double cpu = 0;
+    double vSum = 0;
+    double lastFull = 0;
+    for (int i = 0; i < steps; ++i)
+    {
+        const double c0 = cpuSeconds();
+        dem.step(r.dt);
+        cpu += cpuSeconds() - c0;
+        double V = 0;
+        for (const contactRecord& k : dem.contacts()) V += k.region.volume;
+        contacts += dem.contacts().empty() ? 0 : 1;
+        vSum += V;
+        if (check)
+        {
+            const rigidBody& a = dem.bodies()[0];
+            const rigidBody& b = dem.bodies()[1];
+            const double Vfull =
+                engine->evaluate(*a.geometry, a.pose, *b.geometry, b.pose, dem.settings().overlap).volume();
+            if (Vfull > 0 || V > 0)
+            {
+                const double e = std::abs(V - Vfull)/std::max(V, Vfull);
+                if (std::getenv("REUSE_DEBUG") && e > 0.005)
+                {
+                    std::printf("step %d error %.4f V %.6e full %.6e evaluations %ld regions %zu\n",
+                        i, e, V, Vfull, dem.work().pairEvaluations, dem.contacts().size());
+                }
+                r.maxVolumeError = std::max(r.maxVolumeError, e);
+            }
+            if (i > 0 && Vfull > 0 && lastFull > 0)
+            {
+                r.maxFullJump = std::max(r.maxFullJump, std::abs(Vfull - lastFull)/Vfull);
+            }
+            lastFull = Vfull;
+        }
+    }
+    r.steps = steps;
+    r.usPerContact = 1e6*cpu/std::max(1L, contacts);
+    r.fullFraction = double(dem.work().pairEvaluations - e0)/steps;
+    r.contactFraction = double(contacts)/steps;
+    r.meanVolume = vSum/steps;
+    return r;
+}
+
 } // End anonymous namespace
 
 
@@ -222,6 +384,7 @@ int main(int argc, char* argv[])
 {
     int N = 27;
     int steps = 200;
+    bool reuseOnly = false;
     std::string stl = std::string(__FILE__);
     stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
         + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
@@ -229,6 +392,10 @@ int main(int argc, char* argv[])
     {
         const std::string a = argv[i];
         if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
+        else if (a == "--reuse-only") reuseOnly = true;
+        else if (a.rfind("--reuse-tolerance=", 0) == 0) reuseToleranceOption = std::atof(a.c_str() + 18);
+        else if (a.rfind("--reuse-fraction=", 0) == 0) reuseFractionOption = std::atof(a.c_str() + 17);
+        else if (a.rfind("--reuse-case=", 0) == 0) reuseCaseOption = a.substr(13);
         else if (a.rfind("--steps=", 0) == 0) steps = std::max(10, std::atoi(a.c_str() + 8));
         else if (a[0] != '-') N = std::max(1, std::atoi(a.c_str()));
         else
@@ -240,11 +407,16 @@ int main(int argc, char* argv[])
 
     try
     {
-        // 3. Memory first, on a clean heap
-        const size_t h0 = heapInUse();
         std::shared_ptr<const triangleMeshShape> star(triangleMeshShape::fromFile(stl));
+        double d = 2*std::cbrt(3*star->volume()/(4*M_PI));
+        if (!reuseOnly)
+        {
+        // 3. Memory: a second copy of the surface
+        const size_t h0 = heapInUse();
+        std::unique_ptr<triangleMeshShape> copy(triangleMeshShape::fromFile(stl));
         const size_t h1 = heapInUse();
         const double perSurface = double(h1 - h0);
+        copy.reset();
         const int M = 64;
         double perSharedBody = 0;
         {
@@ -270,7 +442,6 @@ int main(int argc, char* argv[])
         std::printf("  shared surface, per extra body (after) %9.2f kB   (target <= 100 kB)\n", perSharedBody/1024);
 
         // 1. No contact
-        double d = 0;
         const int stepsOff = std::max(2, steps/10);
         const double t0 = cpuSeconds();
         const result off = lattice(star, N, stepsOff, false, d);
@@ -306,12 +477,117 @@ int main(int argc, char* argv[])
             const int n = std::max(10, steps/10);
             const result a0 = onePair(ico, {di/10, 3}, 1e-4, n, false, v0);
             const result a1 = onePair(ico, {di/10, 3}, 1e-4, n, true, v1);
-            std::printf("  icosahedra (20 faces), 0.1 mm deep, h = d/10 level 3, V = %.4g m3: off %8.1f us, on %8.1f us (target <= 100 us)\n",
-                v0, a0.usPerStep, a1.usPerStep);
+            const result a2 = onePair(ico, {di/10, 3}, 1e-4, n, true, v1, true);
+            std::printf("  icosahedra (20 faces), 0.1 mm deep, h = d/10 level 3, V = %.4g m3: off %8.1f us, on %8.1f us, on with reuse %8.1f us (target <= 100 us)\n",
+                v0, a0.usPerStep, a1.usPerStep, a2.usPerStep);
             const result b0 = onePair(star, {d/10, 1}, 2e-5, n, false, v0);
             const result b1 = onePair(star, {d/10, 1}, 2e-5, n, true, v1);
-            std::printf("  lumpy stars (5120 faces), h = d/10 level 1, V = %.4g m3:           off %8.1f us, on %8.1f us (target <= 300 us)\n",
-                v0, b0.usPerStep, b1.usPerStep);
+            const result b2 = onePair(star, {d/10, 1}, 2e-5, n, true, v1, true);
+            std::printf("  lumpy stars (5120 faces), h = d/10 level 1, V = %.4g m3:           off %8.1f us, on %8.1f us, on with reuse %8.1f us (target <= 300 us)\n",
+                v0, b0.usPerStep, b1.usPerStep, b2.usPerStep);
+            std::printf("  (filter off / on: reuse off; at 1e-9 s per sub-step the pair is at rest: reuse is bounded by its count, %d)\n",
+                demSettings().reuseMaxSteps);
+        }
+
+        }
+        // 4. Reuse between sub-steps
+        {
+            std::printf("\nReuse between sub-steps: a lasting contact run by the DEM (glass, automatic step);\n");
+            std::printf("  contact CPU per contact per sub-step, reuse off / on, the fraction of sub-steps evaluated in full,\n");
+            std::printf("  and the largest volume error of the run with reuse against a full evaluation at the same poses\n");
+            std::printf("  %-34s %9s %6s %6s %11s %11s %7s %9s %9s %10s %11s\n",
+                "contact", "dt [s]", "off", "on", "off [us]", "on [us]", "ratio", "full [%]", "touch [%]", "maxErr [%]", "fullJump[%]");
+            std::shared_ptr<const triangleMeshShape> cube
+            (
+                new triangleMeshShape(primitiveMeshes::box(vec3::Constant(0.005)), "cube")
+            );
+            std::shared_ptr<const triangleMeshShape> ico
+            (
+                new triangleMeshShape(primitiveMeshes::icosphere(0.005, 0), "icosahedron")
+            );
+            const double dIco = 2*std::cbrt(3*ico->volume()/(4*M_PI));
+            const double g = 9.81;
+            const quat qb = bodyPose::axisAngle(vec3(0.3, 1, 0.2), 0.7);
+            std::vector<reuseCase> cases;
+            {
+                reuseCase c;
+                c.name = "cube face down on a mesh wall";
+                c.A = std::make_shared<wallMeshShape>
+                (
+                    primitiveMeshes::openBox(vec3(-0.03, -0.03, 0), vec3(0.03, 0.03, 0.06), 4), "tank", 0.01
+                );
+                c.wallA = true;
+                c.B = cube;
+                c.pB = bodyPose(vec3(0, 0, 0.005), quat::Identity());
+                c.load = vec3(0, 0, -g);
+                c.atRest = true;
+                c.flat = true;
+                c.nOff = 4;
+                c.nOn = 300;
+                c.check = false;
+                cases.push_back(c);
+                c.name = "cube as above, rocking 1e-3 rad/s";
+                c.omegaB = vec3(1e-3, 0, 0);
+                cases.push_back(c);
+                c.name = "cube face down on a plane";
+                c.omegaB = vec3::Zero();
+                c.A = std::make_shared<halfSpaceShape>();
+                c.pA = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
+                cases.push_back(c);
+            }
+            auto pressed = [&](const std::string& name, std::shared_ptr<const triangleMeshShape> sh, const overlapSettings& o)
+            {
+                const auto exact = overlapEngine::New("exact");
+                double lo = 0, hi = 4*sh->boundingRadius();
+                for (int i = 0; i < 60; ++i)
+                {
+                    const double m = 0.5*(lo + hi);
+                    const contactGeometry cg = exact->evaluate
+                    (
+                        *sh, bodyPose(vec3::Zero(), quat::Identity()), *sh, bodyPose(vec3(m, 0, 0), qb), o
+                    );
+                    (cg.volume() > 0 ? lo : hi) = m;
+                }
+                reuseCase c;
+                c.name = name;
+                c.A = sh;
+                c.B = sh;
+                c.o = o;
+                c.pB = bodyPose(vec3(lo, 0, 0), qb);
+                c.velocityB = vec3(0, 0.005, 0);
+                c.load = vec3(-1000*g, 0, 0);
+                c.atRest = true;
+                return c;
+            };
+            cases.push_back(pressed("icosahedra pressed, sliding", ico, {dIco/10, 3}));
+            cases.push_back(pressed("lumpy stars pressed, sliding", star, {d/10, 1}));
+            for (reuseCase& c : cases)
+            {
+                if (!reuseCaseOption.empty() && c.name.find(reuseCaseOption) == std::string::npos) continue;
+                if (c.nOn == 0)
+                {
+                    c.nOn = steps*10;
+                    c.nOff = std::max(10, steps);
+                }
+                const reuseResult off = runReuse(c, false, c.nOff, false);
+                const reuseResult on = runReuse(c, true, c.nOn, false);
+                double err = -1, jump = -1;
+                if (c.check)
+                {
+                    const reuseResult chk = runReuse(c, true, c.nOn, true);
+                    err = chk.maxVolumeError;
+                    jump = chk.maxFullJump;
+                }
+                std::printf("  %-34s %9.3g %6d %6d %11.1f %11.1f %7.1f %9.2f %9.1f ",
+                    c.name.c_str(), on.dt, c.nOff, c.nOn, off.usPerContact, on.usPerContact,
+                    off.usPerContact/on.usPerContact, 100*on.fullFraction, 100*on.contactFraction);
+                if (err >= 0) std::printf("%10.4f %11.4f\n", 100*err, 100*jump);
+                else std::printf("%10s %11s\n", "-", "-");
+                std::fflush(stdout);
+            }
+            std::printf("  (-: not checked; a full evaluation of the cube at the default resolution takes seconds:\n"
+                        "   its error is that of the unit test contactReuse.cubeRockingOnPlane)\n");
+            std::printf("  targets: icosahedra <= 100 us, lumpy stars <= 300 us per contact per sub-step at <= 0.5%% volume error\n");
         }
     }
     catch (const coreError& e)

@@ -326,7 +326,7 @@ int main(int argc, char *argv[])
     const scalar total = seconds(wallStart, wallClock::now());
     const scalar simulated = runTime.value() - t0;
     Info<< "\nDEM steps " << w.steps << ", pair evaluations " << w.pairEvaluations
-        << ", queries " << w.queries << ", contact time " << w.contactSeconds << " s"
+        << ", contacts reused " << w.reusedEvaluations << ", queries " << w.queries << ", contact time " << w.contactSeconds << " s"
         << nl << nl
         << "Summary (wall-clock seconds)" << nl
         << "    reading, mesh and insertion  " << setupSeconds << nl

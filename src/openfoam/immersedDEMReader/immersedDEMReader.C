@@ -87,7 +87,7 @@ demSettings readSettings(const dictionary& top)
             *c,
             {
                 "method", "level", "cellSize", "law", "characteristicLength", "normal",
-                "initialOverlaps"
+                "initialOverlaps", "reuse"
             }
         );
         wordList methods;
@@ -118,6 +118,7 @@ demSettings readSettings(const dictionary& top)
         s.separateInitialOverlaps =
             immersedDEMChecks::oneOfOrDefault(*c, "initialOverlaps", overlapActions, "separate")
          == "separate";
+        s.reuseContacts = c->getOrDefault<bool>("reuse", true);
     }
     if (const dictionary* l = top.findDict("lubrication"))
     {

@@ -125,6 +125,9 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
         }
     }
     history_.swap(history);
+    // Reuse records are keyed by the old indices: the next contacts are
+    // evaluated in full
+    reuse_.clear();
     std::vector<contactRecord> contacts;
     for (contactRecord c : contacts_)
     {
@@ -306,17 +309,118 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
 }
 
 
-bool demSolver::evaluatePair
+bool demSolver::reusable(int ia, int ib) const
+{
+    // The potential law applies S and M themselves, whose change the
+    // first-order update does not carry (|S| grows with the contact area)
+    if
+    (
+        !settings_.reuseContacts || law_->needsSpheres() || law_->type() == "potential"
+     || engine_->type() == "sphere"
+    )
+    {
+        return false;
+    }
+    // Spheres and planes among themselves: analytic and cheap already
+    auto analytic = [](const shape& s)
+    {
+        return s.type() == "sphere" || s.type() == "plane";
+    };
+    return !(analytic(*bodies_[ia].geometry) && analytic(*bodies_[ib].geometry));
+}
+
+
+bool demSolver::reused
 (
-    int ia, int ib,
+    const reuseRecord& rec, int ia, int ib, contactGeometry& g,
+    bool anyMotion, double& moved, vec3* u0
+) const
+{
+    if (!anyMotion && rec.count >= settings_.reuseMaxSteps)
+    {
+        return false;
+    }
+    const rigidBody& A = bodies_[ia];
+    const rigidBody& B = bodies_[ib];
+    const bodyPose& A0 = rec.poseA;
+    const bodyPose& B0 = rec.poseB;
+    const bodyPose& A1 = A.pose;
+
+    // B's pose now, seen from A's frame at the full evaluation: the
+    // relative motion since is the move from B0 to Bs (world frame of then)
+    const bodyPose Bs
+    (
+        A0.toWorld(A1.toBody(B.pose.position())),
+        A0.orientation()*A1.orientation().conjugate()*B.pose.orientation()
+    );
+    quat dq = Bs.orientation()*B0.orientation().conjugate();
+    if (dq.w() < 0) dq.coeffs() = -dq.coeffs();
+    const double sinHalf = dq.vec().norm();
+    const double angle = 2*std::atan2(sinHalf, dq.w());
+    const vec3 dtheta = sinHalf > 0 ? vec3(angle/sinHalf*dq.vec()) : vec3::Zero();
+
+    // The relative displacement of B's material points at x
+    auto move = [&](const vec3& x) { return vec3(Bs.toWorld(B0.toBody(x)) - x); };
+
+    // The most any point of either body has moved relative to the other
+    // (over B's bounding ball, and over A's: a new region can only appear
+    // where both are)
+    const double chord = 2*sinHalf;
+    const double dB = move(B0.position()).norm() + chord*B.geometry->boundingRadius();
+    const double dA = move(A0.position()).norm() + chord*A.geometry->boundingRadius();
+    moved = std::min(dA, dB);
+    if (!anyMotion && !(moved <= rec.fraction*rec.depth))
+    {
+        return false;
+    }
+
+    // The contact point moves with B in the share R_A/(R_A + R_B) (as the
+    // point between two spheres; with B against a wall)
+    const double RB = B.equivalentRadius();
+    const double w = isWall_[ia] ? 1.0 : A.equivalentRadius()/(A.equivalentRadius() + RB);
+    const mat3 RT = A1.rotation()*A0.rotation().transpose();
+    g.regions.clear();
+    for (const contactRegion& r0 : rec.regions)
+    {
+        const vec3 u = move(r0.point);
+        vec3 S = r0.areaVector.squaredNorm() > 0 ? r0.areaVector : vec3(r0.area*r0.normal);
+        if (rec.regions.size() == 1)
+        {
+            S += A0.vectorToWorld(rec.slope);
+            if (u0) *u0 = u;
+        }
+        // dV/du_B = -S, dV/dtheta_B = -M about the point (S the integral
+        // of A's outward normal over A's surface inside B)
+        const double V = r0.volume - S.dot(u) - r0.areaMoment.dot(dtheta);
+        if (!(V > 0))
+        {
+            return false;
+        }
+        contactRegion r = r0;
+        const vec3 p = r0.point + w*u;
+        r.volume = V;
+        r.point = A1.toWorld(A0.toBody(p));
+        r.normal = RT*r0.normal;
+        if (r0.areaVector.squaredNorm() > 0)
+        {
+            r.areaVector = RT*r0.areaVector;
+            // The moment about the moved point
+            r.areaMoment = RT*(r0.areaMoment - (p - r0.point).cross(r0.areaVector));
+        }
+        g.regions.push_back(r);
+    }
+    return true;
+}
+
+
+bool demSolver::applyContacts
+(
+    int ia, int ib, const contactGeometry& g,
     std::map<std::pair<int, int>, std::vector<contactHistory>>& next
 )
 {
     rigidBody& A = bodies_[ia];
     rigidBody& B = bodies_[ib];
-    const contactGeometry g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, settings_.overlap);
-    ++counters_.pairEvaluations;
-    counters_.queries += g.queries;
     if (g.regions.empty())
     {
         return false;
@@ -551,30 +655,143 @@ void demSolver::computeContacts()
         filter_.setReach(pairFilter::engineReach(engine_->type(), settings_.overlap));
         filter_.beginSweep();
     }
+    const bool full = fullNext_ || !settings_.reuseContacts;
+    ++sweep_;
+    contactGeometry g;
     const bool lub = lubricating();
     if (lub)
     {
         lubricationFilter_.beginSweep();
     }
-    for (const auto& p : candidatePairs())
+    // The contact of one candidate pair: carried from its last full
+    // evaluation while within the bound, else evaluated
+    auto contactOf = [&](const std::pair<int, int>& p)
     {
         const rigidBody& A = bodies_[p.first];
         const rigidBody& B = bodies_[p.second];
-        const size_t contactsFrom = contacts_.size();
-        if (A.dynamic() || B.dynamic())
+
+        // A lasting contact within its bound: carried, not evaluated (and
+        // not asked of the filter: the filter only ever rejects pairs the
+        // engine would find apart, so the reuse decisions, and so the
+        // trajectories, do not depend on the filter)
+        if (!full)
         {
-            if
-            (
-                !filter
-             || !filter_.separated(p.first, p.second, *A.geometry, A.pose, *B.geometry, B.pose)
-            )
+            const auto it = reuse_.find(p);
+            double moved = 0;
+            if (it != reuse_.end() && reused(it->second, p.first, p.second, g, false, moved))
             {
-                const bool touching = evaluatePair(p.first, p.second, next);
-                if (filter)
-                {
-                    filter_.engineResult(p.first, p.second, touching);
-                }
+                ++it->second.count;
+                it->second.sweep = sweep_;
+                ++counters_.reusedEvaluations;
+                applyContacts(p.first, p.second, g, next);
+                if (filter) filter_.stillTouching(p.first, p.second);
+                return;
             }
+        }
+        if
+        (
+            filter
+         && filter_.separated(p.first, p.second, *A.geometry, A.pose, *B.geometry, B.pose)
+        )
+        {
+            return;
+        }
+        g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, settings_.overlap);
+        ++counters_.pairEvaluations;
+        counters_.queries += g.queries;
+        const bool touching = applyContacts(p.first, p.second, g, next);
+        if (touching && reusable(p.first, p.second))
+        {
+            // The bound: a fraction of the shallowest region's equivalent
+            // depth V/area
+            double depth = std::numeric_limits<double>::max();
+            for (const contactRegion& r : g.regions)
+            {
+                depth = std::min(depth, r.area > 0 ? r.volume/r.area : 0.0);
+            }
+            const auto it = reuse_.find(p);
+            double fraction = settings_.reuseFraction;
+            vec3 slope = vec3::Zero();
+            // (a full evaluation forced at the end of an advance starts
+            // the pair afresh, as a restart from there does)
+            if (it != reuse_.end() && !full)
+            {
+                // The error of the last record carried to here, where it
+                // was given up, sets the fraction of the next: the error
+                // taken as growing linearly with the motion (the error of
+                // S and M), the motion that keeps it within the tolerance
+                fraction = it->second.fraction;
+                contactGeometry carried;
+                double moved = 0;
+                vec3 u = vec3::Zero();
+                if
+                (
+                    it->second.regions.size() == g.regions.size()
+                 && reused(it->second, p.first, p.second, carried, true, moved, &u)
+                 && moved > 0 && it->second.depth > 0
+                )
+                {
+                    const double V = g.volume();
+                    // The secant update of a single region's slope along
+                    // the motion u (A's body frame), when the motion is
+                    // well above round-off; at most half of |S|
+                    if (g.regions.size() == 1 && moved > 0.25*it->second.fraction*it->second.depth && u.squaredNorm() > 0)
+                    {
+                        const contactRegion& r0 = it->second.regions[0];
+                        const double e = V - carried.volume();
+                        vec3 c = it->second.slope - e*it->second.poseA.vectorToBody(u)/u.squaredNorm();
+                        const double Sn = r0.areaVector.squaredNorm() > 0 ? r0.areaVector.norm() : r0.area;
+                        if (c.norm() > 0.5*Sn) c *= 0.5*Sn/c.norm();
+                        slope = c;
+                    }
+                    else if (g.regions.size() == 1)
+                    {
+                        slope = it->second.slope;
+                    }
+                    const double error = std::abs(carried.volume() - V)/V;
+                    const double perDepth = error/(moved/it->second.depth);
+                    // (an error far below the tolerance says nothing of
+                    // its growth: the fraction may double)
+                    fraction =
+                        error <= 0.1*settings_.reuseTolerance
+                      ? 2*fraction
+                      : std::min(2*fraction, settings_.reuseTolerance/perDepth);
+                }
+                // The engine's S is known off by |c| along one direction:
+                // it may be so along any, and the motion is bounded so
+                // that such an error stays within the tolerance too
+                if (g.regions.size() == 1 && slope.squaredNorm() > 0)
+                {
+                    const contactRegion& r = g.regions[0];
+                    const double Sn = r.areaVector.squaredNorm() > 0 ? r.areaVector.norm() : r.area;
+                    fraction = std::min(fraction, settings_.reuseTolerance*Sn/slope.norm());
+                }
+                fraction = std::max
+                (
+                    settings_.reuseFractionMin, std::min(settings_.reuseFractionMax, fraction)
+                );
+            }
+            reuseRecord& rec = it != reuse_.end() ? it->second : reuse_[p];
+            rec.poseA = A.pose;
+            rec.poseB = B.pose;
+            rec.regions = g.regions;
+            rec.depth = depth;
+            rec.fraction = fraction;
+            rec.slope = slope;
+            rec.count = 0;
+            rec.sweep = sweep_;
+        }
+        if (filter)
+        {
+            filter_.engineResult(p.first, p.second, touching);
+        }
+    };
+    for (const auto& p : candidatePairs())
+    {
+        const size_t contactsFrom = contacts_.size();
+        if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
+        {
+            contactOf(p);
         }
         if (lub)
         {
@@ -584,6 +801,11 @@ void demSolver::computeContacts()
     if (lub)
     {
         lubricationFilter_.endSweep();
+    }
+    // Records of pairs not in contact (or not reusable) now are dropped
+    for (auto it = reuse_.begin(); it != reuse_.end();)
+    {
+        it = it->second.sweep == sweep_ ? std::next(it) : reuse_.erase(it);
     }
     if (filter)
     {
@@ -700,6 +922,7 @@ void demSolver::step(double dt)
     // at the half step
     loadTime_ = time_ + 0.5*dt;
     computeContacts();
+    fullNext_ = false;
     loadTime_ = time_ + dt;
     for (rigidBody& b : bodies_)
     {
@@ -765,6 +988,9 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     }
     for (int i = 0; i < n; ++i)
     {
+        // The contacts at the end of an advance (where a run writes and
+        // restarts) come from full evaluations, as at a restart
+        if (i == n - 1) fullNext_ = true;
         step(dt);
         if (afterStep) afterStep();
     }

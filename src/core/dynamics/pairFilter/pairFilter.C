@@ -283,6 +283,17 @@ void pairFilter::engineResult(int a, int b, bool touching)
 }
 
 
+void pairFilter::stillTouching(int a, int b)
+{
+    const auto it = records_.find(key(a, b));
+    if (it != records_.end())
+    {
+        it->second.stamp = stamp_;
+        it->second.touching = true;
+    }
+}
+
+
 void pairFilter::endSweep()
 {
     for (auto it = records_.begin(); it != records_.end();)
