@@ -3,6 +3,7 @@
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
 #include "wallMeshShape.H"
+#include "surfaceTriangles.H"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -13,20 +14,6 @@ namespace immersedDEM
 
 namespace
 {
-
-const triangleBVH* trianglesOf(const shape& s)
-{
-    if (const auto* m = shapeAs<triangleMeshShape>(s))
-    {
-        return &m->distanceField().tree();
-    }
-    if (const auto* w = shapeAs<wallMeshShape>(s))
-    {
-        return &w->distanceField().tree();
-    }
-    return nullptr;
-}
-
 
 //- A sphere (centre c, radius r) as A against any shape B
 closestApproach sphereAgainst

@@ -3,6 +3,7 @@
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
 #include "wallMeshShape.H"
+#include "surfaceTriangles.H"
 
 #include <algorithm>
 #include <cmath>
@@ -15,21 +16,6 @@ namespace
 {
 
 constexpr double unknown = -std::numeric_limits<double>::infinity();
-
-//- The triangles of a surface shape (body frame), or null
-const triangleBVH* trianglesOf(const shape& s)
-{
-    if (const auto* m = shapeAs<triangleMeshShape>(s))
-    {
-        return &m->distanceField().tree();
-    }
-    if (const auto* w = shapeAs<wallMeshShape>(s))
-    {
-        return &w->distanceField().tree();
-    }
-    return nullptr;
-}
-
 
 //- A wall surface: the body's ball (world centre c, radius R) lies where
 //  the wall's distance has the sign of a closed surface (every point of the

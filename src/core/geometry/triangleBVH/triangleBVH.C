@@ -17,52 +17,9 @@ double boxDistSqr(const vec3& p, const vec3& lo, const vec3& hi)
     return d.squaredNorm();
 }
 
-//- Squared distance of the segments pq and uv
-double segmentDistSqr(const vec3& p, const vec3& q, const vec3& u, const vec3& v)
-{
-    // Minimise |p + s d1 - u - t d2|^2 over [0, 1]^2: the unconstrained
-    // s clamped, t from it, clamped, and s again from the clamped t
-    const vec3 d1 = q - p, d2 = v - u, r = p - u;
-    const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-    double s = 0, t = 0;
-    if (a <= 0 && e <= 0)
-    {
-        return r.squaredNorm();
-    }
-    if (a <= 0)
-    {
-        t = std::clamp(f/e, 0.0, 1.0);
-    }
-    else
-    {
-        const double c = d1.dot(r);
-        if (e <= 0)
-        {
-            s = std::clamp(-c/a, 0.0, 1.0);
-        }
-        else
-        {
-            const double b = d1.dot(d2);
-            const double den = a*e - b*b;
-            s = den > 0 ? std::clamp((b*f - c*e)/den, 0.0, 1.0) : 0.0;
-            t = (b*s + f)/e;
-            if (t < 0)
-            {
-                t = 0;
-                s = std::clamp(-c/a, 0.0, 1.0);
-            }
-            else if (t > 1)
-            {
-                t = 1;
-                s = std::clamp((b - c)/a, 0.0, 1.0);
-            }
-        }
-    }
-    return (r + s*d1 - t*d2).squaredNorm();
-}
-
-
-//- The closest points of the segments pq and uv (as segmentDistSqr)
+//- The closest points x on pq and y on uv of the segments pq and uv:
+//  minimise |p + s d1 - u - t d2|^2 over [0, 1]^2, the unconstrained s
+//  clamped, t from it, clamped, and s again from the clamped t
 void segmentClosestPoints
 (
     const vec3& p, const vec3& q, const vec3& u, const vec3& v, vec3& x, vec3& y
@@ -105,6 +62,15 @@ void segmentClosestPoints
     }
     x = p + s*d1;
     y = u + t*d2;
+}
+
+
+//- Squared distance of the segments pq and uv
+double segmentDistSqr(const vec3& p, const vec3& q, const vec3& u, const vec3& v)
+{
+    vec3 x, y;
+    segmentClosestPoints(p, q, u, v, x, y);
+    return (x - y).squaredNorm();
 }
 
 
