@@ -69,6 +69,8 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             // continued run (the DEM computes them again before its step)
             os.writeEntry("contactForce", v(b.contactForce));
             os.writeEntry("contactTorque", v(b.contactTorque));
+            os.writeEntry("lubricationForce", v(b.lubricationForce));
+            os.writeEntry("lubricationTorque", v(b.lubricationTorque));
             os.writeEntry("externalForce", v(b.externalForce));
             os.writeEntry("externalTorque", v(b.externalTorque));
             os.endBlock();
@@ -217,6 +219,8 @@ bool Foam::immersedDEMState::readRestart()
         vector F;
         if (d.readIfPresent("contactForce", F)) b.contactForce = c(F);
         if (d.readIfPresent("contactTorque", F)) b.contactTorque = c(F);
+        if (d.readIfPresent("lubricationForce", F)) b.lubricationForce = c(F);
+        if (d.readIfPresent("lubricationTorque", F)) b.lubricationTorque = c(F);
         if (d.readIfPresent("externalForce", F)) b.externalForce = c(F);
         if (d.readIfPresent("externalTorque", F)) b.externalTorque = c(F);
     }
