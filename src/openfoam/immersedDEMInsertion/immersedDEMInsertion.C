@@ -428,11 +428,25 @@ void Foam::immersedDEMInsertion::insert
         Info<< "    " << r.summary().c_str() << endl;
         if (!r.complete)
         {
+            // What was missed: bodies of a number, the fraction of a
+            // volume fraction
+            OStringStream missed;
+            if (r.requested > 0)
+            {
+                missed
+                    << r.requested - r.placed << " of " << r.requested
+                    << " could not be placed";
+            }
+            else
+            {
+                missed
+                    << "they fill a volume fraction of " << r.volumeFraction()
+                    << " of the requested " << r.targetFraction;
+            }
             WarningInFunction
                 << "Insertion '" << s.name << "' in " << d.name() << " placed "
-                << r.placed << " bodies only: " << (r.requested > 0
-                    ? r.requested - r.placed : 0)
-                << " could not be placed (enlarge the region, lower the number"
+                << r.placed << " bodies only: " << missed.str().c_str()
+                << " (enlarge the region, lower the number"
                 << " or volumeFraction, or raise maxAttempts)" << endl;
         }
     }

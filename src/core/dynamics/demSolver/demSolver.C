@@ -13,6 +13,21 @@
 namespace immersedDEM
 {
 
+namespace
+{
+    //- Spheres and planes among themselves: their contact and gap are
+    //  analytic and cheap, never worth carrying
+    bool analyticPair(const shape& a, const shape& b)
+    {
+        auto analytic = [](const shape& s)
+        {
+            return s.type() == "sphere" || s.type() == "plane";
+        };
+        return analytic(a) && analytic(b);
+    }
+}
+
+
 demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& settings)
 :
     materials_(std::move(materials)),
@@ -128,6 +143,7 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
     // Reuse records are keyed by the old indices: the next contacts are
     // evaluated in full
     reuse_.clear();
+    films_.clear();
     std::vector<contactRecord> contacts;
     for (contactRecord c : contacts_)
     {
@@ -322,11 +338,7 @@ bool demSolver::reusable(int ia, int ib) const
         return false;
     }
     // Spheres and planes among themselves: analytic and cheap already
-    auto analytic = [](const shape& s)
-    {
-        return s.type() == "sphere" || s.type() == "plane";
-    };
-    return !(analytic(*bodies_[ia].geometry) && analytic(*bodies_[ib].geometry));
+    return !analyticPair(*bodies_[ia].geometry, *bodies_[ib].geometry);
 }
 
 
@@ -565,6 +577,38 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
     {
         return;
     }
+    // A film measured earlier in this advance, carried while the bodies
+    // have moved, relative to each other, by less than a small fraction
+    // of its gap: the gap and the normal follow the material points that
+    // were closest (first order in the motion)
+    const std::pair<int, int> key(ia, ib);
+    const auto carried = films_.find(key);
+    if
+    (
+        carried != films_.end()
+     && carried->second.count < settings_.reuseMaxSteps
+     && pairFilter::motionBound(carried->second.poseA, A.pose, A.geometry->boundingRadius())
+      + pairFilter::motionBound(carried->second.poseB, B.pose, B.geometry->boundingRadius())
+      < filmCarryFraction*carried->second.gap
+    )
+    {
+        filmRecord& f = carried->second;
+        ++f.count;
+        const vec3 pa = A.pose.toWorld(f.pointA);
+        const vec3 pb = B.pose.toWorld(f.pointB);
+        const vec3 n = A.pose.vectorToWorld(f.normal);
+        const double gap = (pb - pa).dot(n);
+        ++counters_.reusedFilms;
+        if (gap < hAct)
+        {
+            applyFilm(A, B, 0.5*(pa + pb), n, gap, f.radius, hAct, ls.roughness*effectiveRadius(ia, ib));
+        }
+        return;
+    }
+    if (carried != films_.end())
+    {
+        films_.erase(carried);
+    }
     lubricationFilter_.setReach(hAct);
     if (lubricationFilter_.separated(ia, ib, *A.geometry, A.pose, *B.geometry, B.pose))
     {
@@ -605,9 +649,32 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
         lubrication::curvatureNear(*B.geometry, B.pose, x),
         n, Rcap
     );
+    // (spheres and planes are measured exactly and cheaply every time)
+    if (c.gap > 0 && settings_.reuseContacts && !analyticPair(*A.geometry, *B.geometry))
+    {
+        filmRecord& f = films_[key];
+        f.poseA = A.pose;
+        f.poseB = B.pose;
+        f.pointA = A.pose.toBody(c.pointA);
+        f.pointB = B.pose.toBody(c.pointB);
+        f.normal = A.pose.vectorToBody(n);
+        f.gap = c.gap;
+        f.radius = R;
+        f.count = 0;
+    }
+    applyFilm(A, B, x, n, c.gap, R, hAct, ls.roughness*Rcap);
+}
+
+
+void demSolver::applyFilm
+(
+    rigidBody& A, rigidBody& B, const vec3& x, const vec3& n,
+    double gap, double R, double hAct, double hRough
+)
+{
     double coeff = lubrication::coefficient
     (
-        ls.viscosity, R, c.gap, hAct, ls.roughness*Rcap
+        settings_.lubrication.viscosity, R, gap, hAct, hRough
     );
     // The damper removes at most the whole normal approach in one step
     const double dt = lastDt_ > 0 ? lastDt_ : timeStep();
@@ -970,6 +1037,9 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     }
     const int n = std::max(1, int(steps));
     const double dt = T/n;
+    // Films are carried within an advance only: each starts measured, as
+    // after a restart
+    films_.clear();
     // A step of the user's (deltaT) may let a fast body travel far
     for (size_t i = 0; i < bodies_.size(); ++i)
     {

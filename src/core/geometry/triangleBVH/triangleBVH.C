@@ -150,32 +150,14 @@ double triangleBVH::triangleDistance
 }
 
 
-double triangleBVH::separation
+template<class Visit>
+void triangleBVH::walkNearPairs
 (
     const triangleBVH& A, const triangleBVH& B,
-    const mat3& R, const vec3& t, double cap, double stopBelow
+    const mat3& R, const vec3& t, double& best2, Visit visit
 )
 {
-    if (A.nodes_.empty() || B.nodes_.empty())
-    {
-        return cap;
-    }
     const mat3 absR = R.cwiseAbs();
-    // Round-off of the distances: relative to the sizes and the offset
-    const double slack =
-        1e-12*
-        (
-            (A.nodes_[0].hi - A.nodes_[0].lo).norm()
-          + (B.nodes_[0].hi - B.nodes_[0].lo).norm() + t.norm()
-        );
-
-    struct pairOfNodes { int a, b; };
-    std::vector<pairOfNodes> stack;
-    stack.reserve(128);
-    stack.push_back({0, 0});
-    double best = cap + slack;
-    double best2 = best*best;
-
     auto distSqr = [&](int ia, int ib)
     {
         const node& na = A.nodes_[ia];
@@ -185,6 +167,10 @@ double triangleBVH::separation
         return boxDistSqr(na.lo, na.hi, c, h);
     };
 
+    struct pairOfNodes { int a, b; };
+    std::vector<pairOfNodes> stack;
+    stack.reserve(128);
+    stack.push_back({0, 0});
     std::array<vec3, 3> tb;
     while (!stack.empty())
     {
@@ -206,15 +192,9 @@ double triangleBVH::separation
                 }
                 for (int sa = na.first; sa < na.first + na.count; ++sa)
                 {
-                    const double d = triangleDistance(A.corners_[sa], tb);
-                    if (d < best)
+                    if (visit(sa, sb, tb))
                     {
-                        best = d;
-                        best2 = d*d;
-                        if (best < stopBelow)
-                        {
-                            return best - slack;
-                        }
+                        return;
                     }
                 }
             }
@@ -224,17 +204,8 @@ double triangleBVH::separation
         const bool splitA =
             !na.count
          && (nb.count || (na.hi - na.lo).squaredNorm() >= (nb.hi - nb.lo).squaredNorm());
-        pairOfNodes p1, p2;
-        if (splitA)
-        {
-            p1 = {na.first, pr.b};
-            p2 = {na.right, pr.b};
-        }
-        else
-        {
-            p1 = {pr.a, nb.first};
-            p2 = {pr.a, nb.right};
-        }
+        const pairOfNodes p1 = splitA ? pairOfNodes{na.first, pr.b} : pairOfNodes{pr.a, nb.first};
+        const pairOfNodes p2 = splitA ? pairOfNodes{na.right, pr.b} : pairOfNodes{pr.a, nb.right};
         const double d1 = distSqr(p1.a, p1.b), d2 = distSqr(p2.a, p2.b);
         if (d1 <= d2)
         {
@@ -247,7 +218,50 @@ double triangleBVH::separation
             if (d2 < best2) stack.push_back(p2);
         }
     }
-    return std::min(best, cap) - slack;
+}
+
+
+double triangleBVH::separation
+(
+    const triangleBVH& A, const triangleBVH& B,
+    const mat3& R, const vec3& t, double cap, double stopBelow
+)
+{
+    if (A.nodes_.empty() || B.nodes_.empty())
+    {
+        return cap;
+    }
+    // Round-off of the distances: relative to the sizes and the offset
+    const double slack =
+        1e-12*
+        (
+            (A.nodes_[0].hi - A.nodes_[0].lo).norm()
+          + (B.nodes_[0].hi - B.nodes_[0].lo).norm() + t.norm()
+        );
+
+    double best = cap + slack;
+    double best2 = best*best;
+    bool stopped = false;
+    walkNearPairs
+    (
+        A, B, R, t, best2,
+        [&](int sa, int, const std::array<vec3, 3>& tb)
+        {
+            const double d = triangleDistance(A.corners_[sa], tb);
+            if (d < best)
+            {
+                best = d;
+                best2 = d*d;
+                if (best < stopBelow)
+                {
+                    stopped = true;
+                    return true;
+                }
+            }
+            return false;
+        }
+    );
+    return stopped ? best - slack : std::min(best, cap) - slack;
 }
 
 
@@ -310,77 +324,27 @@ triangleBVH::pairHit triangleBVH::closestPair
     {
         return best;
     }
-    const mat3 absR = R.cwiseAbs();
     double best2 = cap*cap;
-    auto distSqr = [&](int ia, int ib)
-    {
-        const node& na = A.nodes_[ia];
-        const node& nb = B.nodes_[ib];
-        const vec3 c = R*(0.5*(nb.lo + nb.hi)) + t;
-        const vec3 h = absR*(0.5*(nb.hi - nb.lo));
-        return boxDistSqr(na.lo, na.hi, c, h);
-    };
-    struct pairOfNodes { int a, b; };
-    std::vector<pairOfNodes> stack;
-    stack.reserve(128);
-    stack.push_back({0, 0});
-    std::array<vec3, 3> tb;
     vec3 pa, pb;
-    while (!stack.empty())
-    {
-        const pairOfNodes pr = stack.back();
-        stack.pop_back();
-        if (distSqr(pr.a, pr.b) >= best2)
+    walkNearPairs
+    (
+        A, B, R, t, best2,
+        [&](int sa, int sb, const std::array<vec3, 3>& tb)
         {
-            continue;
-        }
-        const node& na = A.nodes_[pr.a];
-        const node& nb = B.nodes_[pr.b];
-        if (na.count && nb.count)
-        {
-            for (int sb = nb.first; sb < nb.first + nb.count; ++sb)
+            const double d = triangleClosestPoints(A.corners_[sa], tb, pa, pb);
+            if (d < best.distance)
             {
-                for (int k = 0; k < 3; ++k)
-                {
-                    tb[k] = R*B.corners_[sb][k] + t;
-                }
-                for (int sa = na.first; sa < na.first + na.count; ++sa)
-                {
-                    const double d = triangleClosestPoints(A.corners_[sa], tb, pa, pb);
-                    if (d < best.distance)
-                    {
-                        best.distance = d;
-                        best2 = d*d;
-                        best.pointA = pa;
-                        best.pointB = pb;
-                        best.faceA = A.faceOfSlot_[sa];
-                        best.faceB = B.faceOfSlot_[sb];
-                        if (d == 0)
-                        {
-                            return best;
-                        }
-                    }
-                }
+                best.distance = d;
+                best2 = d*d;
+                best.pointA = pa;
+                best.pointB = pb;
+                best.faceA = A.faceOfSlot_[sa];
+                best.faceB = B.faceOfSlot_[sb];
+                return d == 0;
             }
-            continue;
+            return false;
         }
-        const bool splitA =
-            !na.count
-         && (nb.count || (na.hi - na.lo).squaredNorm() >= (nb.hi - nb.lo).squaredNorm());
-        const pairOfNodes p1 = splitA ? pairOfNodes{na.first, pr.b} : pairOfNodes{pr.a, nb.first};
-        const pairOfNodes p2 = splitA ? pairOfNodes{na.right, pr.b} : pairOfNodes{pr.a, nb.right};
-        const double d1 = distSqr(p1.a, p1.b), d2 = distSqr(p2.a, p2.b);
-        if (d1 <= d2)
-        {
-            if (d2 < best2) stack.push_back(p2);
-            if (d1 < best2) stack.push_back(p1);
-        }
-        else
-        {
-            if (d1 < best2) stack.push_back(p1);
-            if (d2 < best2) stack.push_back(p2);
-        }
-    }
+    );
     return best;
 }
 
