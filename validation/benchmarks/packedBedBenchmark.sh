@@ -48,43 +48,58 @@ tFlow = float(par["tFlow"])
 cells = int(re.search(r"cells:\s+(\d+)", open(os.path.join(work, "log.checkMesh")).read()).group(1))
 log = open(os.path.join(work, "log.pimpleFoam")).read().split("\n")
 bodies = 0
-stages = {1: dict(p=0.0, dem=0.0, f=0.0, clock=0.0, steps=0, sub=0, cs=0, cmax=0, t0=0.0, t1=0.0),
-          2: dict(p=0.0, dem=0.0, f=0.0, clock=0.0, steps=0, sub=0, cs=0, cmax=0, t0=tFlow, t1=tFlow)}
-clock = 0.0
+# The function object's line for step n follows pimpleFoam's ExecutionTime
+# line of step n, whose ClockTime (whole seconds) does not yet hold the
+# function object's work of step n: step n's wall time is taken as
+# ClockTime(n+1) - ClockTime(n) (its plugin work and the next step's
+# fluid), the first step's from the start, the last step's as the one
+# before it
+steps = []
+clock = None
 for line in log:
+    m = re.match(r"ExecutionTime = \S+ s\s+ClockTime = (\S+) s", line)
+    if m:
+        clock = float(m.group(1))
+        continue
     m = re.match(r"immersedDEM \S+: t (\S+), bodies (\d+), contacts (\d+), DEM steps (\d+), "
                  r".*seconds: projection (\S+) DEM (\S+) forcing (\S+)", line)
-    if m:
-        t = float(m.group(1))
-        s = stages[1 if t <= tFlow + 1e-12 else 2]
+    if m and clock is not None:
         bodies = int(m.group(2))
-        c, n = int(m.group(3)), int(m.group(4))
-        s["steps"] += 1; s["sub"] += n; s["cs"] += c*n; s["cmax"] = max(s["cmax"], c)
-        s["p"] += float(m.group(5)); s["dem"] += float(m.group(6)); s["f"] += float(m.group(7))
-        s["t1"] = t
-        cur = s
-        continue
-    m = re.match(r"ExecutionTime = \S+ s\s+ClockTime = (\S+) s", line)
-    if m and stages[1]["steps"]:
-        new = float(m.group(1))
-        cur["clock"] += new - clock
-        clock = new
+        steps.append(dict(t=float(m.group(1)), c=int(m.group(3)), n=int(m.group(4)),
+                          p=float(m.group(5)), dem=float(m.group(6)), f=float(m.group(7)), clock=clock))
+if not steps:
+    sys.exit("no step of the plugin in %s/log.pimpleFoam" % work)
+for i, s in enumerate(steps):
+    if len(steps) == 1:
+        s["wall"] = s["clock"]
+    elif i == 0:
+        s["wall"] = steps[1]["clock"]
+    elif i + 1 < len(steps):
+        s["wall"] = steps[i + 1]["clock"] - s["clock"]
+    else:
+        s["wall"] = s["clock"] - steps[i - 1]["clock"]
+stages = {}
+prev = 0.0
+for s in steps:
+    k = 1 if s["t"] <= tFlow + 1e-12 else 2
+    for key in (k, "all"):
+        st = stages.setdefault(key, dict(p=0.0, dem=0.0, f=0.0, clock=0.0, steps=0, sub=0, cs=0, cmax=0,
+                                         sim=0.0))
+        st["steps"] += 1; st["sub"] += s["n"]; st["cs"] += s["c"]*s["n"]; st["cmax"] = max(st["cmax"], s["c"])
+        st["p"] += s["p"]; st["dem"] += s["dem"]; st["f"] += s["f"]; st["clock"] += s["wall"]
+        st["sim"] += s["t"] - prev
+    prev = s["t"]
 print("packedBed benchmark: %s, %d cells, %d bodies (%s)" % (work, cells, bodies,
       "serial, the template's settings"))
 print("%-7s %9s %6s %8s %9s %10s %8s %8s %8s %8s %7s %8s %9s %12s" % (
       "stage", "simulated", "steps", "wall [s]", "wall/sim", "projection", "DEM", "forcing", "fluid",
       "share", "sub", "contacts", "DEM/sub", "DEM/c/sub"))
-tot = dict(p=0.0, dem=0.0, f=0.0, clock=0.0, steps=0, sub=0, cs=0, cmax=0, t0=0.0, t1=0.0)
 for k in (1, 2, "all"):
-    s = stages[k] if k != "all" else tot
-    if k != "all":
-        for key in ("p", "dem", "f", "clock", "steps", "sub", "cs"):
-            tot[key] += s[key]
-        tot["cmax"] = max(tot["cmax"], s["cmax"]); tot["t1"] = max(tot["t1"], s["t1"])
-    sim = s["t1"] - s["t0"]
-    if s["steps"] == 0 or sim <= 0:
+    s = stages.get(k)
+    if not s or s["sim"] <= 0:
         print("%-7s not run" % k)
         continue
+    sim = s["sim"]
     plugin = s["p"] + s["dem"] + s["f"]
     print("%-7s %9.4g %6d %8.1f %9.4g %10.2f %8.2f %8.2f %8.2f %7.1f%% %8d %8d %9.3g %12.3g" % (
           k, sim, s["steps"], s["clock"], s["clock"]/sim, s["p"], s["dem"], s["f"],
