@@ -10,6 +10,9 @@ reads them through this module, never by column position:
     ball["time"], ball["vz"]            # lists of floats
     ball.last("z")                      # the last row's value
 
+readRuns("postProcessing/bodies") joins the tables of every run of a case
+(restarts, reruns) in time order.
+
 Text columns (body, bodyA, bodyB) stay strings; every other column is a
 float. A row whose length differs from the header's (a file being written)
 is skipped.
@@ -93,3 +96,36 @@ def readOutputs(directory):
     bodies = readTable(os.path.join(directory, "bodies.dat"))
     c = os.path.join(directory, "contacts.dat")
     return bodies, (readTable(c) if os.path.exists(c) else None)
+
+
+def readRuns(directory, name="bodies"):
+    """One function object's tables of every run of a case, in time order:
+    <name>.dat of each start-time folder under directory
+    (postProcessing/<function object>/<start>/) and <name>_<start>.dat of a
+    rerun from the same start time. Where runs overlap in time the later
+    run's rows are kept (a restart from an earlier time replaces the rows
+    after it). Raises ValueError if there is none, or if their columns
+    differ."""
+    files = []
+    if os.path.isdir(directory):
+        for start in os.listdir(directory):
+            d = os.path.join(directory, start)
+            if not os.path.isdir(d):
+                continue
+            for f in os.listdir(d):
+                if f == name + ".dat" or (f.startswith(name + "_") and f.endswith(".dat")):
+                    files.append(os.path.join(d, f))
+    if not files:
+        raise ValueError("no %s.dat under %s: run the case first" % (name, directory))
+    tables = [readTable(f) for f in files]
+    tables.sort(key=lambda t: t.rows[0][t.index("time")] if len(t) else float("inf"))
+    columns = tables[0].columns
+    rows = []
+    for t in tables:
+        if t.columns != columns:
+            raise ValueError("%s has other columns than %s" % (t.path, tables[0].path))
+        if len(t):
+            start = t.rows[0][t.index("time")]
+            i = t.index("time")
+            rows = [r for r in rows if r[i] < start] + t.rows
+    return Table(columns, rows, directory)
