@@ -1,6 +1,7 @@
 #include "demSolver.H"
 #include "rigidBodyIntegrator.H"
 #include "sphereShape.H"
+#include "convexOverlap.H"
 #include "coreError.H"
 
 #include <algorithm>
@@ -321,12 +322,25 @@ bool demSolver::reusable(int ia, int ib) const
     {
         return false;
     }
+    // Pairs measured exactly by the convex path (convexOverlap): an exact
+    // evaluation costs about what the carried record's bookkeeping does,
+    // and the record would add its first-order error
+    const shape& A = *bodies_[ia].geometry;
+    const shape& B = *bodies_[ib].geometry;
+    if
+    (
+        engine_->type() == "convex"
+     || (engine_->type() == "virtualMesh" && settings_.overlap.convexExact && convexOverlap::handles(A, B))
+    )
+    {
+        return false;
+    }
     // Spheres and planes among themselves: analytic and cheap already
     auto analytic = [](const shape& s)
     {
         return s.type() == "sphere" || s.type() == "plane";
     };
-    return !(analytic(*bodies_[ia].geometry) && analytic(*bodies_[ib].geometry));
+    return !(analytic(A) && analytic(B));
 }
 
 

@@ -1,4 +1,7 @@
 #include "virtualMeshOverlap.H"
+#include "convexOverlap.H"
+#include "halfSpaceShape.H"
+#include "triangleMeshShape.H"
 #include "overlapTools.H"
 #include "sphereOverlap.H"
 #include "sphereShape.H"
@@ -939,6 +942,42 @@ contactGeometry virtualMeshOverlap::evaluate
     if (box.empty())
     {
         return g;
+    }
+
+    // Convex pairs: the exact intersection, cheaper than any octree
+    if (settings.convexExact)
+    {
+        if (convexOverlap::handles(A, B))
+        {
+            return convexOverlap().evaluate(A, pA, B, pB, settings);
+        }
+        // A convex mesh against a wall mesh that is flat wherever the
+        // body reaches (a body on the floor of a tank): the wall's plane
+        const auto* ma = shapeAs<triangleMeshShape>(A);
+        const auto* mb = shapeAs<triangleMeshShape>(B);
+        const auto* wa = shapeAs<wallMeshShape>(A);
+        const auto* wb = shapeAs<wallMeshShape>(B);
+        vec3 x, n;
+        if
+        (
+            wa && mb && mb->convex()
+         && wa->flatNear(pA.toBody(pB.position()), mb->boundingRadius(), x, n)
+        )
+        {
+            const halfSpaceShape plane;
+            const bodyPose pP = halfSpaceShape::poseOf(pA.toWorld(x), pA.vectorToWorld(n));
+            return convexOverlap().evaluate(plane, pP, B, pB, settings);
+        }
+        if
+        (
+            ma && wb && ma->convex()
+         && wb->flatNear(pB.toBody(pA.position()), ma->boundingRadius(), x, n)
+        )
+        {
+            const halfSpaceShape plane;
+            const bodyPose pP = halfSpaceShape::poseOf(pB.toWorld(x), pB.vectorToWorld(n));
+            return convexOverlap().evaluate(A, pA, plane, pP, settings);
+        }
     }
 
     // A sphere against a wall that is flat wherever the sphere reaches:
