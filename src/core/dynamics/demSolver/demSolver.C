@@ -322,9 +322,10 @@ bool demSolver::reusable(int ia, int ib) const
     {
         return false;
     }
-    // Pairs measured exactly by the convex path (convexOverlap): an exact
-    // evaluation costs about what the carried record's bookkeeping does,
-    // and the record would add its first-order error
+    // Pairs measured exactly by the convex path (convexOverlap): a few
+    // microseconds per sub-step, exact; carried, they would cost about 2
+    // to 3 times less but take the first-order error of S, M and the
+    // normal (contactScaleBenchmark --reuse-only, src/README.md)
     const shape& A = *bodies_[ia].geometry;
     const shape& B = *bodies_[ib].geometry;
     if
