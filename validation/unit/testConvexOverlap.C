@@ -393,8 +393,82 @@ TEST(convexOverlap, cubeOnAFlatPartOfAWallMesh)
         const vec3 S = (cubeFirst ? 1 : -1)*onPlane.regions[0].areaVector;
         EXPECT_LT((g.regions[0].areaVector - S).norm(), 1e-9*S.norm());
     }
+    // Near the corner, the side walls within the cube's reach but only
+    // the floor crossed: the floor's plane, exactly
+    const bodyPose nearCorner = cube.poseFromFilePlacement(q, vec3(1.3*a, 1.3*a, a - 2e-5));
+    for (const bool cubeFirst : {true, false})
+    {
+        const contactGeometry g = cubeFirst
+            ? virtualMeshOverlap().evaluate(cube, nearCorner, tank, wall, s)
+            : virtualMeshOverlap().evaluate(tank, wall, cube, nearCorner, s);
+        ASSERT_EQ(g.regions.size(), 1u);
+        EXPECT_EQ(g.leaves, 0);
+        EXPECT_NEAR(g.volume(), 2e-5*4*a*a, 1e-9*2e-5*4*a*a);
+        EXPECT_LT((g.regions[0].normal - (cubeFirst ? -1 : 1)*vec3::UnitZ()).norm(), 1e-9);
+    }
+    // ... and lifted off the floor: no region, no octree either
+    const bodyPose lifted = cube.poseFromFilePlacement(q, vec3(1.3*a, 1.3*a, a + 1e-5));
+    const contactGeometry none = virtualMeshOverlap().evaluate(cube, lifted, tank, wall, s);
+    EXPECT_TRUE(none.regions.empty());
+    EXPECT_EQ(none.leaves, 0);
+    // In the corner, the floor and both sides crossed: the octree
     const bodyPose corner = cube.poseFromFilePlacement(q, vec3(a + 0.001, a + 0.001, a - 2e-5));
     const contactGeometry c = virtualMeshOverlap().evaluate(cube, corner, tank, wall, s);
     ASSERT_FALSE(c.regions.empty());
     EXPECT_GT(c.leaves, 0);
+}
+
+
+TEST(convexOverlap, cubeAgainstTheInsideOfAFacetedTube)
+{
+    // A closed 24-sided prism (radius 60 mm) turned inside out: a tube
+    // whose fluid is inside (a locally convex fluid region). A cube tilted
+    // against one facet near its edge with the next: exact, against the
+    // octree at a fine resolution; the same prism as a pillar, the cube
+    // near the outer edge of two facets (fluid outside, not convex
+    // there): the octree
+    const double a = 0.005;
+    const triangleMeshShape cube(primitiveMeshes::box(vec3::Constant(a)), "cube");
+    std::vector<Eigen::Vector2d> ring;
+    for (int k = 0; k < 24; ++k) ring.emplace_back(0.06*std::cos(2*M_PI*k/24), 0.06*std::sin(2*M_PI*k/24));
+    triangleSoup tube = primitiveMeshes::extrudedPolygon(ring, 0.04);
+    triangleSoup pillar = tube;
+    for (triFace& f : tube.faces) std::swap(f[1], f[2]);
+    const wallMeshShape inside(tube, "tube", 0.01);
+    const wallMeshShape outside(pillar, "pillar", 0.01);
+    const bodyPose wall;
+
+    // Facet 0 spans the angles 0..15 degrees; its inner distance 60 cos(7.5)
+    // mm; the cube, off its middle by 1 mm, reaches its neighbours' planes
+    // (within its bounding radius) but crosses facet 0's only
+    const double rf = 0.06*std::cos(M_PI/24);
+    const vec3 nf(std::cos(M_PI/24), std::sin(M_PI/24), 0);
+    const quat q = bodyPose::axisAngle(vec3(0, 0, 1), M_PI/24 + 0.05)*bodyPose::axisAngle(vec3(0, 1, 0), 0.03);
+    bodyPose p = cube.poseFromFilePlacement(q, vec3::Zero());
+    double out = -1;
+    for (const vec3& x : cube.convex()->vertices()) out = std::max(out, nf.dot(p.toWorld(x) - p.position()));
+    const vec3 c = (rf - out + 3e-5)*nf + vec3(0, 0, 0.02) + 0.001*vec3(-nf.y(), nf.x(), 0);
+    p = bodyPose(c, p.orientation());
+
+    const overlapSettings s{0.0005, 4};
+    const contactGeometry g = virtualMeshOverlap().evaluate(inside, wall, cube, p, s);
+    ASSERT_EQ(g.regions.size(), 1u);
+    EXPECT_EQ(g.leaves, 0);
+    overlapSettings fine{0.00025, 5};
+    fine.convexExact = false;
+    const contactGeometry o = virtualMeshOverlap().evaluate(inside, wall, cube, p, fine);
+    std::cout << "tube: exact " << g.volume() << ", octree " << o.volume() << std::endl;
+    ASSERT_EQ(o.regions.size(), 1u);
+    EXPECT_NEAR(g.volume(), o.volume(), 0.01*g.volume());
+    EXPECT_LT((g.regions[0].normal - o.regions[0].normal).norm(), 0.02);
+    // The wall's S points from the wall into the cube, towards the axis
+    EXPECT_LT(g.regions[0].areaVector.dot(nf), 0);
+
+    const bodyPose q2 = cube.poseFromFilePlacement
+    (
+        bodyPose::axisAngle(vec3(0, 0, 1), M_PI/24), (rf + a - 3e-5)*nf + vec3(0, 0, 0.02) + 0.006*vec3(-nf.y(), nf.x(), 0)
+    );
+    const contactGeometry pg = virtualMeshOverlap().evaluate(outside, wall, cube, q2, s);
+    ASSERT_FALSE(pg.regions.empty());
+    EXPECT_GT(pg.leaves, 0);
 }

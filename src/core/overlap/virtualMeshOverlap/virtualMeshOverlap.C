@@ -978,6 +978,52 @@ contactGeometry virtualMeshOverlap::evaluate
             const bodyPose pP = halfSpaceShape::poseOf(pB.toWorld(x), pB.vectorToWorld(n));
             return convexOverlap().evaluate(A, pA, plane, pP, settings);
         }
+        // A convex mesh in a locally convex fluid region of a wall mesh
+        // (a box tank's corner, a faceted tube): exact when the body is
+        // behind one of its planes only (the plane's half-space), nothing
+        // when behind none; behind two or more, the octree
+        const triangleMeshShape* m = wa ? mb : wb ? ma : nullptr;
+        if (m && m->convex())
+        {
+            const bool wallFirst = wa != nullptr;
+            const wallMeshShape& w = wallFirst ? *wa : *wb;
+            const bodyPose& pW = wallFirst ? pA : pB;
+            const bodyPose& pM = wallFirst ? pB : pA;
+            std::vector<wallMeshShape::plane> planes;
+            if (w.convexFluidNear(pW.toBody(pM.position()), m->boundingRadius(), planes))
+            {
+                const double eps = 1e-12*m->boundingRadius();
+                int crossed = 0;
+                const wallMeshShape::plane* which = nullptr;
+                for (const wallMeshShape::plane& q : planes)
+                {
+                    for (const vec3& v : m->convex()->vertices())
+                    {
+                        if (q.normal.dot(pW.toBody(pM.toWorld(v))) < q.offset - eps)
+                        {
+                            ++crossed;
+                            which = &q;
+                            break;
+                        }
+                    }
+                }
+                if (crossed == 0)
+                {
+                    return g;
+                }
+                if (crossed == 1)
+                {
+                    const halfSpaceShape plane;
+                    const bodyPose pP = halfSpaceShape::poseOf
+                    (
+                        pW.toWorld(which->offset*which->normal), pW.vectorToWorld(which->normal)
+                    );
+                    return wallFirst
+                        ? convexOverlap().evaluate(plane, pP, B, pB, settings)
+                        : convexOverlap().evaluate(A, pA, plane, pP, settings);
+                }
+            }
+        }
     }
 
     // A sphere against a wall that is flat wherever the sphere reaches:
