@@ -26,7 +26,8 @@ Description
        two 20-face icosahedra 0.1 mm deep (B turned, 0.1 mm closer
        along a general direction than at first touch) (at h = d/10 level 3 and at the
        defaults), two 10 mm cubes face on face 0.01 mm deep, a 10 mm cube
-       0.01 mm deep in a plane; the volume errors against the exact engine
+       0.01 mm deep in a plane, and on the floor of an open box (a wall
+       mesh) 2.8 and 3.6 mm from two sides; the volume errors against the exact engine
        (the plane as a slab mesh).
 
     Sections 1 and 2 measure the octree itself (convexExact off: their
@@ -41,6 +42,7 @@ Usage
 #include "convexOverlap.H"
 #include "exactOverlap.H"
 #include "halfSpaceShape.H"
+#include "wallMeshShape.H"
 #include "virtualMeshOverlap.H"
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
@@ -217,6 +219,13 @@ int main(int argc, char* argv[])
         primitiveMeshes::transform(slabSoup, mat3::Identity(), vec3(0, 0, -0.05));
         const triangleMeshShape slab(slabSoup, "slab");
         const bodyPose onPlane = cubeB.poseFromFilePlacement(quat::Identity(), vec3(0.0013, 0.0021, a - 1e-5));
+        // The floor of an open box (100 mm, 10 x 10 squares per side) as
+        // a wall mesh: the same cube on it near a corner (the sides within
+        // its reach, not crossed)
+        const wallMeshShape tank
+        (
+            primitiveMeshes::openBox(vec3(-0.0065, -0.0065, 0), vec3(0.0935, 0.0935, 0.1), 10), "tank", 0.02
+        );
 
         struct convexCase
         {
@@ -233,11 +242,12 @@ int main(int argc, char* argv[])
             {"icosahedra 0.1 mm, d/10 level 3", &icoA, pIA, &icoA, pIB, {dIco/10, 3}, 0},
             {"icosahedra 0.1 mm, defaults", &icoA, pIA, &icoA, pIB, {overlapSettings::defaultCellSize(dIco), 4}, 0},
             {"cubes face on face 0.01 mm", &cubeA, origin, &cubeB, cubeFace, defaults, 0},
-            {"cube on a plane 0.01 mm", &plane, bodyPose(), &cubeB, onPlane, defaults, 0}
+            {"cube on a plane 0.01 mm", &plane, bodyPose(), &cubeB, onPlane, defaults, 0},
+            {"cube on a wall mesh, by a corner", &tank, bodyPose(), &cubeB, onPlane, defaults, 0}
         };
         cc[0].exact = cc[1].exact = exactOverlap().evaluate(icoA, pIA, icoA, pIB, {}).volume();
         cc[2].exact = exactOverlap().evaluate(cubeA, origin, cubeB, cubeFace, {}).volume();
-        cc[3].exact = exactOverlap().evaluate
+        cc[3].exact = cc[4].exact = exactOverlap().evaluate
         (
             slab, slab.poseFromFilePlacement(quat::Identity(), vec3::Zero()), cubeB, onPlane, {}
         ).volume();
