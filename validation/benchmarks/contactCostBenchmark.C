@@ -20,13 +20,29 @@ Description
        cube, two tori. Prints the seconds per contact and the ratio
        faceted/bevelled.
 
+    3. Convex pairs: the octree (convexExact off) against the exact convex
+       path (convexOverlap, the default for them), side by side
+       (alternating; the convex path timed over 100 calls per sample):
+       two 20-face icosahedra 0.1 mm deep (B turned, 0.1 mm closer
+       along a general direction than at first touch) (at h = d/10 level 3 and at the
+       defaults), two 10 mm cubes face on face 0.01 mm deep, a 10 mm cube
+       0.01 mm deep in a plane, and on the floor of an open box (a wall
+       mesh) 2.8 and 3.6 mm from two sides; the volume errors against the exact engine
+       (the plane as a slab mesh).
+
+    Sections 1 and 2 measure the octree itself (convexExact off: their
+    cubes and icospheres are convex).
+
     A benchmark, not a test: it checks nothing.
 
 Usage
     contactCostBenchmark [repeats (default 21)]
 \*---------------------------------------------------------------------------*/
 
+#include "convexOverlap.H"
 #include "exactOverlap.H"
+#include "halfSpaceShape.H"
+#include "wallMeshShape.H"
 #include "virtualMeshOverlap.H"
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
@@ -89,6 +105,7 @@ int main(int argc, char* argv[])
         const double ex = exactOverlap().evaluate(cubeA, pA, cubeB, pB, {}).volume();
         overlapSettings off{h, 4}, on{h, 4};
         off.facetedEdges = false;
+        off.convexExact = on.convexExact = false;
         const double vOff = vm.evaluate(cubeA, pA, cubeB, pB, off).volume();
         const double vOn = vm.evaluate(cubeA, pA, cubeB, pB, on).volume();
         if (ex > 0)
@@ -152,6 +169,7 @@ int main(int argc, char* argv[])
     {
         overlapSettings off{pc.h, 4}, on{pc.h, 4};
         off.facetedEdges = false;
+        off.convexExact = on.convexExact = false;
         std::vector<double> tOff, tOn;
         double vOff = 0, vOn = 0;
         for (int r = 0; r < repeats; ++r)
@@ -165,6 +183,97 @@ int main(int argc, char* argv[])
         }
         std::printf("%-28s %12.4e %12.4e %8.3f %12.5e %12.5e\n",
             pc.name, median(tOff), median(tOn), median(tOn)/median(tOff), vOff, vOn);
+    }
+
+    // 3. The exact convex path against the octree, side by side
+    {
+        std::printf("\nConvex pairs: the octree (convexExact no) against the exact convex path"
+            " (the default), median of %d alternating runs; volume errors against exact (CGAL)\n", repeats);
+        std::printf("%-34s %12s %12s %9s %12s %12s %12s\n",
+            "pair", "octree [us]", "convex [us]", "ratio", "V exact", "octree err", "convex err");
+        const triangleMeshShape icoA(primitiveMeshes::icosphere(0.005, 0), "icosahedron");
+        const double dIco = std::cbrt(6/M_PI*icoA.volume());
+        // B turned, pressed 0.1 mm into A along a general direction (the
+        // bodies' extents along it overlapping by 0.1 mm)
+        const vec3 u = vec3(0.3, -0.5, 0.8).normalized();
+        const quat qB = bodyPose::axisAngle(vec3(1, -2, 0.5), 0.9);
+        const bodyPose pIA = icoA.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+        bodyPose pIB = icoA.poseFromFilePlacement(qB, vec3::Zero());
+        {
+            // The centre distance at first touch, by bisection on the
+            // exact volume, then 0.1 mm closer
+            double lo = 0, hi = 0.02;
+            for (int k = 0; k < 60; ++k)
+            {
+                const double mid = 0.5*(lo + hi);
+                pIB.setPosition(mid*u);
+                (convexOverlap().evaluate(icoA, pIA, icoA, pIB, {}).volume() > 0 ? lo : hi) = mid;
+            }
+            pIB.setPosition((hi - 1e-4)*u);
+        }
+
+        // A 10 mm cube resting face down 0.01 mm deep in a plane, and the
+        // same in a slab mesh for the exact engine
+        const halfSpaceShape plane;
+        triangleSoup slabSoup = primitiveMeshes::box(vec3(0.1, 0.1, 0.05));
+        primitiveMeshes::transform(slabSoup, mat3::Identity(), vec3(0, 0, -0.05));
+        const triangleMeshShape slab(slabSoup, "slab");
+        const bodyPose onPlane = cubeB.poseFromFilePlacement(quat::Identity(), vec3(0.0013, 0.0021, a - 1e-5));
+        // The floor of an open box (100 mm, 10 x 10 squares per side) as
+        // a wall mesh: the same cube on it near a corner (the sides within
+        // its reach, not crossed)
+        const wallMeshShape tank
+        (
+            primitiveMeshes::openBox(vec3(-0.0065, -0.0065, 0), vec3(0.0935, 0.0935, 0.1), 10), "tank", 0.02
+        );
+
+        struct convexCase
+        {
+            const char* name;
+            const shape* A; bodyPose pA; const shape* B; bodyPose pB;
+            overlapSettings s;
+            double exact;
+        };
+        const overlapSettings defaults{h, 4};
+        const bodyPose cubeFace = cubeB.poseFromFilePlacement(quat::Identity(), vec3(sx, sy, 2*a - 1e-3*2*a));
+        const bodyPose origin = cubeA.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+        std::vector<convexCase> cc
+        {
+            {"icosahedra 0.1 mm, d/10 level 3", &icoA, pIA, &icoA, pIB, {dIco/10, 3}, 0},
+            {"icosahedra 0.1 mm, defaults", &icoA, pIA, &icoA, pIB, {overlapSettings::defaultCellSize(dIco), 4}, 0},
+            {"cubes face on face 0.01 mm", &cubeA, origin, &cubeB, cubeFace, defaults, 0},
+            {"cube on a plane 0.01 mm", &plane, bodyPose(), &cubeB, onPlane, defaults, 0},
+            {"cube on a wall mesh, by a corner", &tank, bodyPose(), &cubeB, onPlane, defaults, 0}
+        };
+        cc[0].exact = cc[1].exact = exactOverlap().evaluate(icoA, pIA, icoA, pIB, {}).volume();
+        cc[2].exact = exactOverlap().evaluate(cubeA, origin, cubeB, cubeFace, {}).volume();
+        cc[3].exact = cc[4].exact = exactOverlap().evaluate
+        (
+            slab, slab.poseFromFilePlacement(quat::Identity(), vec3::Zero()), cubeB, onPlane, {}
+        ).volume();
+        for (const convexCase& c : cc)
+        {
+            overlapSettings octree = c.s;
+            octree.convexExact = false;
+            std::vector<double> tO, tC;
+            double vO = 0, vC = 0;
+            const int inner = 100;
+            for (int r = 0; r < repeats; ++r)
+            {
+                auto t0 = std::chrono::steady_clock::now();
+                vO = vm.evaluate(*c.A, c.pA, *c.B, c.pB, octree).volume();
+                tO.push_back(seconds(t0));
+                t0 = std::chrono::steady_clock::now();
+                for (int k = 0; k < inner; ++k)
+                {
+                    vC = vm.evaluate(*c.A, c.pA, *c.B, c.pB, c.s).volume();
+                }
+                tC.push_back(seconds(t0)/inner);
+            }
+            std::printf("%-34s %12.1f %12.2f %9.0f %12.5e %+12.2e %+12.2e\n",
+                c.name, 1e6*median(tO), 1e6*median(tC), median(tO)/median(tC), c.exact,
+                vO/c.exact - 1, vC/c.exact - 1);
+        }
     }
     return 0;
 }

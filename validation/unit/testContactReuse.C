@@ -40,6 +40,15 @@ constexpr double angleTolerance = 1.0;  // degrees
 // Torque against |F| R_B: the force's direction error times the arm
 constexpr double torqueTolerance = forceTolerance + angleTolerance*M_PI/180;
 
+// The octree's settings: the reuse is that of the octree's contacts
+// (convex pairs go to the exact convex path by default, never reused)
+overlapSettings octree(double h, int level)
+{
+    overlapSettings o{h, level};
+    o.convexExact = false;
+    return o;
+}
+
 std::shared_ptr<const triangleMeshShape> icosahedron()
 {
     return std::make_shared<triangleMeshShape>(primitiveMeshes::icosphere(0.005, 0), "icosahedron");
@@ -235,7 +244,7 @@ TEST(contactReuse, icosahedraApproaching)
 {
     const auto ico = icosahedron();
     const double d = 2*std::cbrt(3*ico->volume()/(4*M_PI));
-    const overlapSettings o{d/10, 3};
+    const overlapSettings o = octree(d/10, 3);
     const double x0 = touchingDistance(*ico, qIco, o);
     const int n = 300;
     const comparison c = drive
@@ -258,7 +267,7 @@ TEST(contactReuse, icosahedraSlidingAndRolling)
 {
     const auto ico = icosahedron();
     const double d = 2*std::cbrt(3*ico->volume()/(4*M_PI));
-    const overlapSettings o{d/10, 3};
+    const overlapSettings o = octree(d/10, 3);
     const double x = touchingDistance(*ico, qIco, o) - 1e-4;
     const int n = 300;
     const comparison sliding = drive
@@ -298,7 +307,7 @@ TEST(contactReuse, cubeRockingOnPlane)
 {
     const auto cube = std::make_shared<triangleMeshShape>(primitiveMeshes::box(vec3::Constant(0.005)), "cube");
     const double d = 2*std::cbrt(3*cube->volume()/(4*M_PI));
-    const overlapSettings o{d/10, 2};
+    const overlapSettings o = octree(d/10, 2);
     const auto plane = std::make_shared<halfSpaceShape>();
     const int n = 400;
     const comparison c = drive
@@ -374,4 +383,29 @@ TEST(contactReuse, potentialLawNotReused)
     EXPECT_EQ(c.reused, 0);
     EXPECT_EQ(c.fullEvaluations, n);
     EXPECT_EQ(c.maxForceError, 0);
+}
+
+
+// Convex pairs on the default settings: the exact convex path at every
+// sub-step (cheaper than a reuse's error is worth), never carried
+TEST(contactReuse, convexPairsAreEvaluatedEverySubStep)
+{
+    const auto ico = icosahedron();
+    const double d = 2*std::cbrt(3*ico->volume()/(4*M_PI));
+    const overlapSettings o{d/10, 3};
+    const double x = touchingDistance(*ico, qIco, o) - 1e-4;
+    const int n = 100;
+    const comparison c = drive
+    (
+        ico, false, ico, o, n,
+        [&](int k, bodyPose& pA, bodyPose& pB)
+        {
+            pA = bodyPose(vec3::Zero(), quat::Identity());
+            pB = bodyPose(vec3(x, 1e-4*k/n, 0), qIco);
+        }
+    );
+    std::cout << c << std::endl;
+    EXPECT_EQ(c.reused, 0);
+    EXPECT_EQ(c.fullEvaluations, n);
+    EXPECT_EQ(c.maxVolumeError, 0);
 }

@@ -87,7 +87,7 @@ demSettings readSettings(const dictionary& top)
             *c,
             {
                 "method", "level", "cellSize", "law", "characteristicLength", "normal",
-                "initialOverlaps", "reuse"
+                "initialOverlaps", "reuse", "convexExact"
             }
         );
         wordList methods;
@@ -119,6 +119,7 @@ demSettings readSettings(const dictionary& top)
             immersedDEMChecks::oneOfOrDefault(*c, "initialOverlaps", overlapActions, "separate")
          == "separate";
         s.reuseContacts = c->getOrDefault<bool>("reuse", true);
+        s.overlap.convexExact = c->getOrDefault<bool>("convexExact", true);
     }
     if (const dictionary* l = top.findDict("lubrication"))
     {

@@ -1,6 +1,7 @@
 #include "demSolver.H"
 #include "rigidBodyIntegrator.H"
 #include "sphereShape.H"
+#include "convexOverlap.H"
 #include "coreError.H"
 
 #include <algorithm>
@@ -337,8 +338,22 @@ bool demSolver::reusable(int ia, int ib) const
     {
         return false;
     }
+    // Pairs measured exactly by the convex path (convexOverlap): a few
+    // microseconds per sub-step, exact; carried, they would cost about 2
+    // to 3 times less but take the first-order error of S, M and the
+    // normal (contactScaleBenchmark --reuse-only, src/README.md)
+    const shape& A = *bodies_[ia].geometry;
+    const shape& B = *bodies_[ib].geometry;
+    if
+    (
+        engine_->type() == "convex"
+     || (engine_->type() == "virtualMesh" && settings_.overlap.convexExact && convexOverlap::handles(A, B))
+    )
+    {
+        return false;
+    }
     // Spheres and planes among themselves: analytic and cheap already
-    return !analyticPair(*bodies_[ia].geometry, *bodies_[ib].geometry);
+    return !analyticPair(A, B);
 }
 
 

@@ -83,6 +83,7 @@ triangleMeshShape::triangleMeshShape
 
     search_.reset(new search(body_));
     distance_.reset(new surfaceDistance(body_));
+    convex_ = convexPolyhedron::of(body_);
 }
 
 

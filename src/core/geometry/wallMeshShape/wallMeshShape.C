@@ -118,6 +118,50 @@ bool wallMeshShape::flatNear(const vec3& p, double r, vec3& point, vec3& normal)
 }
 
 
+bool wallMeshShape::convexFluidNear
+(
+    const vec3& p, double r, std::vector<plane>& planes, size_t maxFaces
+) const
+{
+    planes.clear();
+    std::vector<int> faces;
+    if (!distance_.tree().facesWithin(p, r, faces, maxFaces) || faces.empty())
+    {
+        return false;
+    }
+    const double tol = 1e-9*(box_.max - box_.min).norm();
+    for (const int f : faces)
+    {
+        if (onRim_[f]) return false;
+        const vec3& n = distance_.faceNormal(f);
+        const double c = n.dot(surface_.points[surface_.faces[f][0]]);
+        bool merged = false;
+        for (const plane& q : planes)
+        {
+            if (n.dot(q.normal) > 1 - 1e-12 && std::abs(c - q.offset) <= tol)
+            {
+                merged = true;
+                break;
+            }
+        }
+        if (!merged) planes.push_back({n, c});
+    }
+    // Every near corner in front of every near plane, and p too
+    for (const plane& q : planes)
+    {
+        if (q.normal.dot(p) < q.offset) return false;
+        for (const int f : faces)
+        {
+            for (const int v : surface_.faces[f])
+            {
+                if (q.normal.dot(surface_.points[v]) < q.offset - tol) return false;
+            }
+        }
+    }
+    return true;
+}
+
+
 double wallMeshShape::volume() const
 {
     // A wall has no mass properties: it never moves by forces. Zero, not

@@ -1,6 +1,7 @@
 #include "overlapEngine.H"
 #include "coreError.H"
 #include "cellsOverlap.H"
+#include "convexOverlap.H"
 #include "exactOverlap.H"
 #include "sphereOverlap.H"
 #include "uniformOverlap.H"
@@ -20,6 +21,7 @@ const std::map<std::string, std::function<std::unique_ptr<overlapEngine>()>>& ta
     static const std::map<std::string, std::function<std::unique_ptr<overlapEngine>()>> t
     {
         {"cells", []{ return std::unique_ptr<overlapEngine>(new cellsOverlap()); }},
+        {"convex", []{ return std::unique_ptr<overlapEngine>(new convexOverlap()); }},
         {"exact", []{ return std::unique_ptr<overlapEngine>(new exactOverlap()); }},
         {"sphere", []{ return std::unique_ptr<overlapEngine>(new sphereOverlap()); }},
         {"uniform", []{ return std::unique_ptr<overlapEngine>(new uniformOverlap()); }},

@@ -1,4 +1,7 @@
 #include "virtualMeshOverlap.H"
+#include "convexOverlap.H"
+#include "halfSpaceShape.H"
+#include "triangleMeshShape.H"
 #include "overlapTools.H"
 #include "sphereOverlap.H"
 #include "sphereShape.H"
@@ -939,6 +942,88 @@ contactGeometry virtualMeshOverlap::evaluate
     if (box.empty())
     {
         return g;
+    }
+
+    // Convex pairs: the exact intersection, cheaper than any octree
+    if (settings.convexExact)
+    {
+        if (convexOverlap::handles(A, B))
+        {
+            return convexOverlap().evaluate(A, pA, B, pB, settings);
+        }
+        // A convex mesh against a wall mesh that is flat wherever the
+        // body reaches (a body on the floor of a tank): the wall's plane
+        const auto* ma = shapeAs<triangleMeshShape>(A);
+        const auto* mb = shapeAs<triangleMeshShape>(B);
+        const auto* wa = shapeAs<wallMeshShape>(A);
+        const auto* wb = shapeAs<wallMeshShape>(B);
+        vec3 x, n;
+        if
+        (
+            wa && mb && mb->convex()
+         && wa->flatNear(pA.toBody(pB.position()), mb->boundingRadius(), x, n)
+        )
+        {
+            const halfSpaceShape plane;
+            const bodyPose pP = halfSpaceShape::poseOf(pA.toWorld(x), pA.vectorToWorld(n));
+            return convexOverlap().evaluate(plane, pP, B, pB, settings);
+        }
+        if
+        (
+            ma && wb && ma->convex()
+         && wb->flatNear(pB.toBody(pA.position()), ma->boundingRadius(), x, n)
+        )
+        {
+            const halfSpaceShape plane;
+            const bodyPose pP = halfSpaceShape::poseOf(pB.toWorld(x), pB.vectorToWorld(n));
+            return convexOverlap().evaluate(A, pA, plane, pP, settings);
+        }
+        // A convex mesh in a locally convex fluid region of a wall mesh
+        // (a box tank's corner, a faceted tube): exact when the body is
+        // behind one of its planes only (the plane's half-space), nothing
+        // when behind none; behind two or more, the octree
+        const triangleMeshShape* m = wa ? mb : wb ? ma : nullptr;
+        if (m && m->convex())
+        {
+            const bool wallFirst = wa != nullptr;
+            const wallMeshShape& w = wallFirst ? *wa : *wb;
+            const bodyPose& pW = wallFirst ? pA : pB;
+            const bodyPose& pM = wallFirst ? pB : pA;
+            std::vector<wallMeshShape::plane> planes;
+            if (w.convexFluidNear(pW.toBody(pM.position()), m->boundingRadius(), planes))
+            {
+                const double eps = 1e-12*m->boundingRadius();
+                int crossed = 0;
+                const wallMeshShape::plane* which = nullptr;
+                for (const wallMeshShape::plane& q : planes)
+                {
+                    for (const vec3& v : m->convex()->vertices())
+                    {
+                        if (q.normal.dot(pW.toBody(pM.toWorld(v))) < q.offset - eps)
+                        {
+                            ++crossed;
+                            which = &q;
+                            break;
+                        }
+                    }
+                }
+                if (crossed == 0)
+                {
+                    return g;
+                }
+                if (crossed == 1)
+                {
+                    const halfSpaceShape plane;
+                    const bodyPose pP = halfSpaceShape::poseOf
+                    (
+                        pW.toWorld(which->offset*which->normal), pW.vectorToWorld(which->normal)
+                    );
+                    return wallFirst
+                        ? convexOverlap().evaluate(plane, pP, B, pB, settings)
+                        : convexOverlap().evaluate(A, pA, plane, pP, settings);
+                }
+            }
+        }
     }
 
     // A sphere against a wall that is flat wherever the sphere reaches:
