@@ -16,11 +16,11 @@ for f in sorted(glob.glob(os.path.join(d, "energyBox_*.dat"))):
             continue
         n, t, e = line.split()
         steps.append(int(n)); drift.append(100*float(e))
-    ax.plot(steps, drift, label=law, lw=1)
+    ax.plot(steps, drift, ".-" if law == "volume" else "-", label=law + (" (kinetic, contact-free steps)" if law == "volume" else " (kinetic + stored w(V))"), lw=1, ms=3)
 ax.axhline(0.1, color="k", ls=":", lw=0.8)
 ax.axhline(-0.1, color="k", ls=":", lw=0.8, label="+-0.1%")
 ax.set_xlabel("DEM step")
-ax.set_ylabel("kinetic energy / start - 1 [%] (contact-free steps)")
+ax.set_ylabel("energy / start - 1 [%]")
 ax.set_title("10 lumpy stars + 10 cubes, closed box, e = 1, mu = 0")
 ax.legend()
 fig.tight_layout()
