@@ -43,6 +43,7 @@ Description
 Usage
     contactScaleBenchmark [N] [--stl=file] [--steps=n] [--reuse-only]
         [--reuse-case=word] [--reuse-tolerance=x] [--reuse-fraction=x]
+        [--compare-laws]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
     steps   sub-steps with the filter on (default 200; off: steps/10);
@@ -51,6 +52,9 @@ Usage
     reuse-case  part 4: only the contacts whose name holds the word
     reuse-tolerance  demSettings::reuseTolerance (default 0.0025)
     reuse-fraction   demSettings::reuseFraction, the first (default 0.02)
+    compare-laws     part 4 with reuse on, the volume and potential laws
+                     side by side (issue 19: the cost per contact of the
+                     default law against the former default)
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -275,11 +279,16 @@ struct reuseCase
 double reuseToleranceOption = -1;
 double reuseFractionOption = -1;
 std::string reuseCaseOption;
+bool compareLaws = false;
 
-reuseResult runReuse(const reuseCase& c, bool reuse, int steps, bool check)
+reuseResult runReuse
+(
+    const reuseCase& c, bool reuse, int steps, bool check, const std::string& law = ""
+)
 {
     contactMaterial glass{"glass", 6e10, 0.24, 0.9, 0.3};
     demSettings s;
+    if (!law.empty()) s.contactLaw = law;
     if (reuseToleranceOption > 0) s.reuseTolerance = reuseToleranceOption;
     if (reuseFractionOption > 0) s.reuseFraction = reuseFractionOption;
     s.overlap = c.o;
@@ -396,6 +405,7 @@ int main(int argc, char* argv[])
         else if (a.rfind("--reuse-tolerance=", 0) == 0) reuseToleranceOption = std::atof(a.c_str() + 18);
         else if (a.rfind("--reuse-fraction=", 0) == 0) reuseFractionOption = std::atof(a.c_str() + 17);
         else if (a.rfind("--reuse-case=", 0) == 0) reuseCaseOption = a.substr(13);
+        else if (a == "--compare-laws") { compareLaws = true; reuseOnly = true; }
         else if (a.rfind("--steps=", 0) == 0) steps = std::max(10, std::atoi(a.c_str() + 8));
         else if (a[0] != '-') N = std::max(1, std::atoi(a.c_str()));
         else
@@ -495,8 +505,17 @@ int main(int argc, char* argv[])
             std::printf("\nReuse between sub-steps: a lasting contact run by the DEM (glass, automatic step);\n");
             std::printf("  contact CPU per contact per sub-step, reuse off / on, the fraction of sub-steps evaluated in full,\n");
             std::printf("  and the largest volume error of the run with reuse against a full evaluation at the same poses\n");
+            if (compareLaws)
+            {
+                std::printf("  laws side by side, reuse on: volume against potential (the default)\n");
+                std::printf("  %-34s %9s %9s %6s %11s %11s %7s %9s %9s\n",
+                    "contact", "dt vol", "dt pot", "steps", "volume [us]", "potent [us]", "pot/vol", "fullV [%]", "fullP [%]");
+            }
+            else
+            {
             std::printf("  %-34s %9s %6s %6s %11s %11s %7s %9s %9s %10s %11s\n",
                 "contact", "dt [s]", "off", "on", "off [us]", "on [us]", "ratio", "full [%]", "touch [%]", "maxErr [%]", "fullJump[%]");
+            }
             std::shared_ptr<const triangleMeshShape> cube
             (
                 new triangleMeshShape(primitiveMeshes::box(vec3::Constant(0.005)), "cube")
@@ -568,6 +587,23 @@ int main(int argc, char* argv[])
                 {
                     c.nOn = steps*10;
                     c.nOff = std::max(10, steps);
+                }
+                if (compareLaws)
+                {
+                    // Both with reuse, alternating, the smaller CPU of two runs each
+                    reuseResult vol, pot;
+                    for (int k = 0; k < 2; ++k)
+                    {
+                        const reuseResult v = runReuse(c, true, c.nOn, false, "volume");
+                        const reuseResult p = runReuse(c, true, c.nOn, false, "potential");
+                        if (k == 0 || v.usPerContact < vol.usPerContact) vol = v;
+                        if (k == 0 || p.usPerContact < pot.usPerContact) pot = p;
+                    }
+                    std::printf("  %-34s %9.3g %9.3g %6d %11.1f %11.1f %7.3f %9.2f %9.2f\n",
+                        c.name.c_str(), vol.dt, pot.dt, c.nOn, vol.usPerContact, pot.usPerContact,
+                        pot.usPerContact/vol.usPerContact, 100*vol.fullFraction, 100*pot.fullFraction);
+                    std::fflush(stdout);
+                    continue;
                 }
                 const reuseResult off = runReuse(c, false, c.nOff, false);
                 const reuseResult on = runReuse(c, true, c.nOn, false);

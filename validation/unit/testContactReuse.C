@@ -359,10 +359,10 @@ TEST(contactReuse, lumpyStarsSliding)
 }
 
 
-// The potential law applies S and M themselves (force w'(V) S, couple
-// w'(V) M), whose change the first-order update does not carry: its
-// contacts are never reused
-TEST(contactReuse, potentialLawNotReused)
+// The potential law (force w'(V) S, couple w'(V) M) is reused with its
+// own tolerance on the volume (reuseTolerancePotential, for the energy):
+// contacts are carried, and the force stays that of a full evaluation
+TEST(contactReuse, potentialLawReused)
 {
     const auto ico = icosahedron();
     const double d = 2*std::cbrt(3*ico->volume()/(4*M_PI));
@@ -380,9 +380,9 @@ TEST(contactReuse, potentialLawNotReused)
         "potential"
     );
     std::cout << c << std::endl;
-    EXPECT_EQ(c.reused, 0);
-    EXPECT_EQ(c.fullEvaluations, n);
-    EXPECT_EQ(c.maxForceError, 0);
+    EXPECT_GT(c.reused, 0);
+    EXPECT_LT(c.fullEvaluations, n);
+    EXPECT_LT(c.maxForceError, 0.01);
 }
 
 

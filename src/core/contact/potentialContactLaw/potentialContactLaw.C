@@ -7,19 +7,28 @@
 namespace immersedDEM
 {
 
-double potentialContactLaw::dWdV(double V, double Y, double lc, double Rstar)
+double potentialContactLaw::referenceVolume(double flatFaceArea, double Rstar)
+{
+    const double floor = M_PI*Rstar*std::pow(eps*Rstar, 2);
+    if (!(flatFaceArea > 0) || !std::isfinite(flatFaceArea))
+    {
+        return floor;
+    }
+    return std::max(floor, flatFaceArea*flatFaceArea/(4*M_PI*Rstar));
+}
+
+
+double potentialContactLaw::dWdV(double V, double Y, double lc, double Rstar, double V0)
 {
     if (V <= 0) return 0;
-    const double V0 = M_PI*Rstar*std::pow(eps*Rstar, 2);
     return Y*V/(2*lc*std::sqrt(M_PI*Rstar*(V + V0)));
 }
 
 
-double potentialContactLaw::energy(double V, double Y, double lc, double Rstar)
+double potentialContactLaw::energy(double V, double Y, double lc, double Rstar, double V0)
 {
     if (V <= 0) return 0;
     // integral of u/sqrt(u + V0) = (2/3)(u + V0)^1.5 - 2 V0 (u + V0)^0.5
-    const double V0 = M_PI*Rstar*std::pow(eps*Rstar, 2);
     const double s = std::sqrt(V + V0), s0 = std::sqrt(V0);
     const double I = (2.0/3)*(s*s*s - s0*s0*s0) - 2*V0*(s - s0);
     return Y*I/(2*lc*std::sqrt(M_PI*Rstar));
@@ -50,7 +59,8 @@ contactOutput potentialContactLaw::evaluate(const contactInput& in, contactHisto
     }
     const double c = restitutionCalibration::damping(in.material.restitution, q);
 
-    const double wp = dWdV(r.volume, Y, lc, in.effectiveRadius);
+    const double V0 = referenceVolume(in.flatFaceArea, in.effectiveRadius);
+    const double wp = dWdV(r.volume, Y, lc, in.effectiveRadius, V0);
     out.normalForce = std::max(0.0, wp*Sn + c*std::sqrt(in.effectiveMass*k)*vApproach);
     // The elastic part is w' (S, M); damping scales both (w' -> fn/|S|)
     const double scale = out.normalForce/Sn;
@@ -80,19 +90,6 @@ double potentialContactLaw::contactTime
     // below, softer: longer)
     const double K = M_PI*m.effectiveModulus*effectiveRadius/characteristicLength;
     return 2.8044*std::cbrt(3*effectiveMass/(2*K*v));
-}
-
-
-double potentialContactLaw::faceStiffness
-(
-    const pairMaterial& m, double area, double effectiveRadius,
-    double characteristicLength
-) const
-{
-    // d(w'(A d) A)/dd at d = 0, the largest (the force softens with depth)
-    const double R = effectiveRadius;
-    const double V0 = M_PI*R*std::pow(eps*R, 2);
-    return m.effectiveModulus*area*area/(2*characteristicLength*std::sqrt(M_PI*R*V0));
 }
 
 } // End namespace immersedDEM

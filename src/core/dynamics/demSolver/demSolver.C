@@ -328,12 +328,12 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
 
 bool demSolver::reusable(int ia, int ib) const
 {
-    // The potential law applies S and M themselves, whose change the
-    // first-order update does not carry (|S| grows with the contact area)
+    // The potential law reused: F = w'(V0 - S.u - M.dtheta) S, the gradient
+    // of w of the first-order volume, is conservative between two full
+    // evaluations (the error is that of the volume, within reuseTolerance)
     if
     (
-        !settings_.reuseContacts || law_->needsSpheres() || law_->type() == "potential"
-     || engine_->type() == "sphere"
+        !settings_.reuseContacts || law_->needsSpheres() || engine_->type() == "sphere"
     )
     {
         return false;
@@ -492,6 +492,8 @@ bool demSolver::applyContacts
         }
     }
 
+    const double flatFace =
+        std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
     for (const contactRegion& r : g.regions)
     {
         // The history of the nearest region of the last step, if close
@@ -525,6 +527,7 @@ bool demSolver::applyContacts
         in.characteristicLength = lc;
         in.effectiveRadius = RHertz;
         in.overlapDepth = depth;
+        in.flatFaceArea = flatFace;
         in.dt = lastDt_;
         const contactOutput f = law_->evaluate(in, h);
         h.normal = r.normal;
@@ -792,6 +795,9 @@ void demSolver::computeContacts()
                 depth = std::min(depth, r.area > 0 ? r.volume/r.area : 0.0);
             }
             const auto it = reuse_.find(p);
+            const double reuseTol =
+                law_->type() == "potential"
+              ? settings_.reuseTolerancePotential : settings_.reuseTolerance;
             double fraction = settings_.reuseFraction;
             vec3 slope = vec3::Zero();
             // (a full evaluation forced at the end of an advance starts
@@ -835,9 +841,9 @@ void demSolver::computeContacts()
                     // (an error far below the tolerance says nothing of
                     // its growth: the fraction may double)
                     fraction =
-                        error <= 0.1*settings_.reuseTolerance
+                        error <= 0.1*reuseTol
                       ? 2*fraction
-                      : std::min(2*fraction, settings_.reuseTolerance/perDepth);
+                      : std::min(2*fraction, reuseTol/perDepth);
                 }
                 // The engine's S is known off by |c| along one direction:
                 // it may be so along any, and the motion is bounded so
@@ -846,7 +852,7 @@ void demSolver::computeContacts()
                 {
                     const contactRegion& r = g.regions[0];
                     const double Sn = r.areaVector.squaredNorm() > 0 ? r.areaVector.norm() : r.area;
-                    fraction = std::min(fraction, settings_.reuseTolerance*Sn/slope.norm());
+                    fraction = std::min(fraction, reuseTol*Sn/slope.norm());
                 }
                 fraction = std::max
                 (

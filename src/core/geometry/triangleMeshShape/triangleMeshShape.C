@@ -81,6 +81,7 @@ triangleMeshShape::triangleMeshShape
         boundingRadius_ = std::max(boundingRadius_, p.norm());
     }
 
+    largestFlatFace_ = flatFaceOf(body_);
     search_.reset(new search(body_));
     distance_.reset(new surfaceDistance(body_));
     convex_ = convexPolyhedron::of(body_);

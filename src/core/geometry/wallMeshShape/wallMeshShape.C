@@ -50,6 +50,7 @@ wallMeshShape::wallMeshShape
         radius_ = std::max(radius_, p.norm());
     }
     radius_ += thickness;
+    largestFlatFace_ = flatFaceOf(surface_);
 
     std::map<std::pair<int, int>, int> edgeUses;
     for (const triFace& f : surface_.faces)
