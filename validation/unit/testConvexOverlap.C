@@ -411,11 +411,50 @@ TEST(convexOverlap, cubeOnAFlatPartOfAWallMesh)
     const contactGeometry none = virtualMeshOverlap().evaluate(cube, lifted, tank, wall, s);
     EXPECT_TRUE(none.regions.empty());
     EXPECT_EQ(none.leaves, 0);
-    // In the corner, the floor and both sides crossed: the octree
+    // In the corner, the floor and both sides crossed, the parts behind
+    // the floor and behind a side sharing the cube's bottom corners: the
+    // octree
     const bodyPose corner = cube.poseFromFilePlacement(q, vec3(a + 0.001, a + 0.001, a - 2e-5));
     const contactGeometry c = virtualMeshOverlap().evaluate(cube, corner, tank, wall, s);
     ASSERT_FALSE(c.regions.empty());
     EXPECT_GT(c.leaves, 0);
+
+    // In the corner off the floor, both sides crossed apart from each
+    // other (a pellet in a square tube's corner): one exact region per
+    // side, their sum the octree's volume within its accuracy
+    const bodyPose sides = cube.poseFromFilePlacement(q, vec3(a + 0.00123, a + 0.00121, 0.03));
+    for (const bool cubeFirst : {true, false})
+    {
+        const contactGeometry g = cubeFirst
+            ? virtualMeshOverlap().evaluate(cube, sides, tank, wall, s)
+            : virtualMeshOverlap().evaluate(tank, wall, cube, sides, s);
+        ASSERT_EQ(g.regions.size(), 2u);
+        EXPECT_EQ(g.leaves, 0);
+        double planes = 0;
+        for (const vec3& n : {vec3(1, 0, 0), vec3(0, 1, 0)})
+        {
+            const bodyPose pP = halfSpaceShape::poseOf(vec3::Zero(), n);
+            planes += convexOverlap().evaluate(cube, sides, plane, pP, s).volume();
+        }
+        EXPECT_NEAR(g.volume(), planes, 1e-12*planes);
+        EXPECT_GT(planes, 0);
+        overlapSettings octree = s;
+        octree.convexExact = false;
+        const contactGeometry o = virtualMeshOverlap().evaluate(cube, sides, tank, wall, octree);
+        EXPECT_GT(o.leaves, 0);
+        EXPECT_NEAR(o.volume(), planes, 0.01*planes);
+        // Normals: each region's along its wall's
+        for (const contactRegion& r : g.regions)
+        {
+            const double along = std::max(std::abs(r.normal.x()), std::abs(r.normal.y()));
+            EXPECT_GT(along, 1 - 1e-9);
+        }
+    }
+    // Far from every wall, inside the tank's box: no region and no octree
+    const bodyPose middle = cube.poseFromFilePlacement(q, vec3(0.05, 0.05, 0.05));
+    const contactGeometry free = virtualMeshOverlap().evaluate(tank, wall, cube, middle, s);
+    EXPECT_TRUE(free.regions.empty());
+    EXPECT_EQ(free.leaves, 0);
 }
 
 

@@ -41,6 +41,7 @@ Usage
 #include "immersedDEMReader.H"
 #include "immersedDEMStreams.H"
 #include "demOutput.H"
+#include "runSummary.H"
 #include "coreError.H"
 
 #include <algorithm>
@@ -214,40 +215,8 @@ int main(int argc, char *argv[])
     scalar demSeconds = 0;
 
     // Extremes seen, for the summary
-    scalar maxVolume = 0, maxVolumeTime = 0, maxVolumeFraction = 0;
-    word maxVolumePair("none");
-    scalar maxSpeed = 0, maxSpeedTime = 0;
-    word maxSpeedBody("none");
-    auto track = [&]()
-    {
-        for (const auto& c : dem->contacts())
-        {
-            if (c.region.volume > maxVolume)
-            {
-                const auto& A = dem->bodies()[c.a];
-                const auto& B = dem->bodies()[c.b];
-                maxVolume = c.region.volume;
-                maxVolumeTime = dem->time();
-                maxVolumePair = word(A.name + "-" + B.name);
-                const scalar V = dem->isWall(c.a)
-                    ? B.geometry->volume()
-                    : std::min(A.geometry->volume(), B.geometry->volume());
-                maxVolumeFraction = maxVolume/V;
-            }
-        }
-        for (size_t i = 0; i < dem->bodies().size(); ++i)
-        {
-            if (dem->isWall(int(i))) continue;
-            const scalar v = dem->bodies()[i].velocity.norm();
-            if (v > maxSpeed)
-            {
-                maxSpeed = v;
-                maxSpeedTime = dem->time();
-                maxSpeedBody = word(dem->bodies()[i].name);
-            }
-        }
-    };
-    track();
+    immersedDEM::runSummary summary;
+    summary.track(*dem);
 
     const scalar t0 = runTime.value();
     const scalar tEnd = runTime.endTime().value();
@@ -262,7 +231,7 @@ int main(int argc, char *argv[])
     long stepsAtReport = 0, steps = 0;
     auto progress = [&]()
     {
-        track();
+        summary.track(*dem);
         ++steps;
         const auto now = wallClock::now();
         const scalar since = seconds(lastReport, now);
@@ -323,25 +292,15 @@ int main(int argc, char *argv[])
     }
 
     const auto& w = dem->work();
-    const scalar total = seconds(wallStart, wallClock::now());
-    const scalar simulated = runTime.value() - t0;
+    immersedDEM::runSummary::seconds parts;
+    parts.setup = setupSeconds;
+    immersedDEM::runSummary::demParts(*dem, demSeconds, parts);
+    parts.output = outputSeconds;
+    parts.total = seconds(wallStart, wallClock::now());
     Info<< "\nDEM steps " << w.steps << ", pair evaluations " << w.pairEvaluations
-        << ", contacts reused " << w.reusedEvaluations << ", queries " << w.queries << ", contact time " << w.contactSeconds << " s"
+        << ", contacts reused " << w.reusedEvaluations << ", queries " << w.queries
         << nl << nl
-        << "Summary (wall-clock seconds)" << nl
-        << "    reading, mesh and insertion  " << setupSeconds << nl
-        << "    contacts (search, geometry, law)  " << w.contactSeconds << nl
-        << "    integration and loads        " << demSeconds - w.contactSeconds << nl
-        << "    output                       " << outputSeconds << nl
-        << "    total                        " << total << nl
-        << "    simulated " << simulated << " s in " << w.steps << " DEM steps: "
-        << (total > 0 ? w.steps/total : 0) << " steps/s, "
-        << (simulated > 0 ? total/simulated : 0) << " wall s per simulated s" << nl
-        << "    largest overlap " << maxVolume << " m3 ("
-        << 100*maxVolumeFraction << "% of the smaller body), " << maxVolumePair
-        << " at t = " << maxVolumeTime << nl
-        << "    largest speed " << maxSpeed << " m/s, " << maxSpeedBody
-        << " at t = " << maxSpeedTime << nl
+        << summary.text(parts, runTime.value() - t0, w.steps, false).c_str() << nl
         << nl << "ExecutionTime = " << runTime.elapsedCpuTime() << " s"
         << nl << "End\n" << endl;
 

@@ -1,7 +1,9 @@
 #include "lubrication.H"
+#include "convexDistance.H"
+#include "convexPolyhedron.H"
+#include "triangleMeshShape.H"
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
-#include "triangleMeshShape.H"
 #include "wallMeshShape.H"
 #include "surfaceTriangles.H"
 
@@ -134,15 +136,69 @@ closestApproach lubrication::approach
     // B's triangles in A's frame
     const mat3 R = pA.rotation().transpose()*pB.rotation();
     const vec3 t = pA.rotation().transpose()*(pB.position() - pA.position());
-    const triangleBVH::pairHit hit = triangleBVH::closestPair(*tA, *tB, R, t, cap);
-    if (hit.faceA < 0)
+    const auto* mA = shapeAs<triangleMeshShape>(A);
+    const auto* mB = shapeAs<triangleMeshShape>(B);
+    const auto* wallShapeA = shapeAs<wallMeshShape>(A);
+    const auto* wallShapeB = shapeAs<wallMeshShape>(B);
+    // A convex body in a locally convex part of a wall mesh: the least
+    // height of its corners over the wall's planes there
+    convexWallGap cw;
+    if (wallShapeA && mB && mB->convex())
     {
-        return a;
+        cw = convexWallDistance(*wallShapeA, pA, mB->convex()->vertices(), B.boundingRadius(), pB, cap);
     }
-    a.found = true;
-    a.gap = hit.distance;
-    a.pointA = pA.toWorld(hit.pointA);
-    a.pointB = pA.toWorld(hit.pointB);
+    else if (wallShapeB && mA && mA->convex())
+    {
+        cw = convexWallDistance(*wallShapeB, pB, mA->convex()->vertices(), A.boundingRadius(), pA, cap);
+    }
+    if (cw.known)
+    {
+        if (cw.beyondReach || !(cw.gap < cap))
+        {
+            return a;
+        }
+        a.found = true;
+        if (!(cw.gap > 0))
+        {
+            a.gap = 0;
+            return a;
+        }
+        a.gap = cw.gap;
+        a.pointA = wallShapeA ? cw.pointWall : cw.pointBody;
+        a.pointB = wallShapeA ? cw.pointBody : cw.pointWall;
+    }
+    else if (mA && mB && mA->convex() && mB->convex())
+    {
+        // Two convex meshes: their corners' distance (GJK)
+        const convexClosest c =
+            convexDistance(mA->convex()->vertices(), mB->convex()->vertices(), R, t);
+        if (c.intersecting)
+        {
+            a.found = true;
+            a.gap = 0;
+            return a;
+        }
+        if (!(c.distance < cap))
+        {
+            return a;
+        }
+        a.found = true;
+        a.gap = c.distance;
+        a.pointA = pA.toWorld(c.pointA);
+        a.pointB = pA.toWorld(c.pointB);
+    }
+    else
+    {
+        const triangleBVH::pairHit hit = triangleBVH::closestPair(*tA, *tB, R, t, cap);
+        if (hit.faceA < 0)
+        {
+            return a;
+        }
+        a.found = true;
+        a.gap = hit.distance;
+        a.pointA = pA.toWorld(hit.pointA);
+        a.pointB = pA.toWorld(hit.pointB);
+    }
     if (a.gap > 0)
     {
         a.normal = (a.pointB - a.pointA)/(a.pointB - a.pointA).norm();

@@ -627,6 +627,30 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
     {
         films_.erase(carried);
     }
+    // In contact now: the film is the contact's (its largest region's
+    // point and normal, at no gap), so no search for the closest approach
+    const contactRecord* best = nullptr;
+    for (size_t k = contactsFrom; k < contacts_.size(); ++k)
+    {
+        if (!best || contacts_[k].region.volume > best->region.volume)
+        {
+            best = &contacts_[k];
+        }
+    }
+    if (best)
+    {
+        const double Rcap = effectiveRadius(ia, ib);
+        const vec3& x = best->region.point;
+        const vec3& n = best->region.normal;
+        const double R = lubrication::gapRadius
+        (
+            lubrication::curvatureNear(*A.geometry, A.pose, x),
+            lubrication::curvatureNear(*B.geometry, B.pose, x),
+            n, Rcap
+        );
+        applyFilm(A, B, x, n, 0, R, hAct, ls.roughness*Rcap);
+        return;
+    }
     lubricationFilter_.setReach(hAct);
     if (lubricationFilter_.separated(ia, ib, *A.geometry, A.pose, *B.geometry, B.pose))
     {
@@ -639,27 +663,14 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
     {
         return;
     }
-    vec3 n = c.normal;
-    vec3 x = 0.5*(c.pointA + c.pointB);
     if (!(c.gap > 0))
     {
-        // Touching or overlapping: the contact's point and normal (its
-        // largest region of this pair); none found, no film to speak of
-        const contactRecord* best = nullptr;
-        for (size_t k = contactsFrom; k < contacts_.size(); ++k)
-        {
-            if (!best || contacts_[k].region.volume > best->region.volume)
-            {
-                best = &contacts_[k];
-            }
-        }
-        if (!best)
-        {
-            return;
-        }
-        n = best->region.normal;
-        x = best->region.point;
+        // Touching with no contact region (an overlap below the engine's
+        // threshold): no film to speak of
+        return;
     }
+    const vec3& n = c.normal;
+    const vec3 x = 0.5*(c.pointA + c.pointB);
     const double Rcap = effectiveRadius(ia, ib);
     const double R = lubrication::gapRadius
     (
@@ -668,7 +679,7 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
         n, Rcap
     );
     // (spheres and planes are measured exactly and cheaply every time)
-    if (c.gap > 0 && settings_.reuseContacts && !analyticPair(*A.geometry, *B.geometry))
+    if (settings_.reuseContacts && !analyticPair(*A.geometry, *B.geometry))
     {
         filmRecord& f = films_[key];
         f.poseA = A.pose;
@@ -874,7 +885,15 @@ void demSolver::computeContacts()
             filter_.engineResult(p.first, p.second, touching);
         }
     };
-    for (const auto& p : candidatePairs())
+    using clock = std::chrono::steady_clock;
+    auto since = [](clock::time_point a)
+    {
+        return std::chrono::duration<double>(clock::now() - a).count();
+    };
+    const auto searchStart = clock::now();
+    const auto candidates = candidatePairs();
+    counters_.searchSeconds += since(searchStart);
+    for (const auto& p : candidates)
     {
         const size_t contactsFrom = contacts_.size();
         if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
@@ -883,7 +902,9 @@ void demSolver::computeContacts()
         }
         if (lub)
         {
+            const auto lubStart = clock::now();
             lubricatePair(p.first, p.second, contactsFrom);
+            counters_.lubricationSeconds += since(lubStart);
         }
     }
     if (lub)

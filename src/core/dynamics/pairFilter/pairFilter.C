@@ -1,7 +1,9 @@
 #include "pairFilter.H"
+#include "convexDistance.H"
+#include "convexPolyhedron.H"
+#include "triangleMeshShape.H"
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
-#include "triangleMeshShape.H"
 #include "wallMeshShape.H"
 #include "surfaceTriangles.H"
 
@@ -151,6 +153,35 @@ double pairFilter::gapLowerBound
     // B's triangles in A's frame: x_A = R_A^T (R_B x_B + c_B - c_A)
     const mat3 R = pA.rotation().transpose()*pB.rotation();
     const vec3 t = pA.rotation().transpose()*(pB.position() - pA.position());
+
+    // Two convex meshes: the exact distance of their corners' hulls
+    // (GJK), less round-off; no surface inside the other can hide there
+    const auto* mA = shapeAs<triangleMeshShape>(A);
+    const auto* mB = shapeAs<triangleMeshShape>(B);
+    // A convex body in a locally convex part of a wall mesh: exact too
+    {
+        const auto* wallA = shapeAs<wallMeshShape>(A);
+        const auto* wallB = shapeAs<wallMeshShape>(B);
+        convexWallGap cw;
+        if (wallA && mB && mB->convex())
+        {
+            cw = convexWallDistance(*wallA, pA, mB->convex()->vertices(), RB, pB, cap);
+        }
+        else if (wallB && mA && mA->convex())
+        {
+            cw = convexWallDistance(*wallB, pB, mA->convex()->vertices(), RA, pA, cap);
+        }
+        if (cw.known)
+        {
+            return cw.gap - 1e-9*std::min(RA, RB);
+        }
+    }
+    if (mA && mB && mA->convex() && mB->convex())
+    {
+        const convexClosest c =
+            convexDistance(mA->convex()->vertices(), mB->convex()->vertices(), R, t);
+        return c.intersecting ? 0.0 : c.distance - 1e-9*std::min(RA, RB);
+    }
     const double g = triangleBVH::separation(*tA, *tB, R, t, cap, stopBelow);
     if (!(g > 0))
     {

@@ -119,6 +119,18 @@ bool wallMeshShape::flatNear(const vec3& p, double r, vec3& point, vec3& normal)
 }
 
 
+bool wallMeshShape::clearOf(const vec3& p, double r) const
+{
+    std::vector<int> faces;
+    // maxFaces 0: false at the first face found that near
+    if (!distance_.tree().facesWithin(p, r, faces, 0))
+    {
+        return false;
+    }
+    return distance_.closest(p).distance > r;
+}
+
+
 bool wallMeshShape::convexFluidNear
 (
     const vec3& p, double r, std::vector<plane>& planes, size_t maxFaces

@@ -1,5 +1,6 @@
 #include "virtualMeshOverlap.H"
 #include "convexOverlap.H"
+#include "convexPolyhedron.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
 #include "overlapTools.H"
@@ -925,6 +926,47 @@ vec3 regionNormal
 } // End anonymous namespace
 
 
+// Whether some point of a convex body (corners: its vertices in the
+// wall's frame) lies behind both planes by more than eps: the part of the
+// body behind p (a convex polytope) reaches behind q iff one of its
+// corners does, and those are the body's corners behind p and the points
+// where its edges cross p
+static bool convexBehindBoth
+(
+    const convexPolyhedron& body,
+    const std::vector<vec3>& corners,
+    const wallMeshShape::plane& p,
+    const wallMeshShape::plane& q,
+    double eps
+)
+{
+    auto height = [](const wallMeshShape::plane& r, const vec3& x)
+    {
+        return r.normal.dot(x) - r.offset;
+    };
+    for (const vec3& v : corners)
+    {
+        if (height(p, v) < 0 && height(q, v) < -eps) return true;
+    }
+    for (const convexPolyhedron::face& f : body.faces())
+    {
+        const size_t n = f.corners.size();
+        for (size_t k = 0; k < n; ++k)
+        {
+            const vec3& a = corners[f.corners[k]];
+            const vec3& b = corners[f.corners[(k + 1)%n]];
+            const double ha = height(p, a), hb = height(p, b);
+            if ((ha < 0) != (hb < 0))
+            {
+                const vec3 x = a + (ha/(ha - hb))*(b - a);
+                if (height(q, x) < -eps) return true;
+            }
+        }
+    }
+    return false;
+}
+
+
 contactGeometry virtualMeshOverlap::evaluate
 (
     const shape& A, const bodyPose& pA,
@@ -942,6 +984,22 @@ contactGeometry virtualMeshOverlap::evaluate
     if (box.empty())
     {
         return g;
+    }
+
+    // A body whose bounding ball reaches no face of a wall mesh, on the
+    // wall's fluid side: apart (the common box is the body's whole box
+    // anywhere inside a tank or a tube, and its octree would find nothing)
+    {
+        const auto* wa = shapeAs<wallMeshShape>(A);
+        const auto* wb = shapeAs<wallMeshShape>(B);
+        if
+        (
+            (wa && !wb && wa->clearOf(pA.toBody(pB.position()), B.boundingRadius()))
+         || (wb && !wa && wb->clearOf(pB.toBody(pA.position()), A.boundingRadius()))
+        )
+        {
+            return g;
+        }
     }
 
     // Convex pairs: the exact intersection, cheaper than any octree
@@ -993,34 +1051,52 @@ contactGeometry virtualMeshOverlap::evaluate
             if (w.convexFluidNear(pW.toBody(pM.position()), m->boundingRadius(), planes))
             {
                 const double eps = 1e-12*m->boundingRadius();
-                int crossed = 0;
-                const wallMeshShape::plane* which = nullptr;
+                // The body's corners in the wall's frame
+                std::vector<vec3> corners;
+                for (const vec3& v : m->convex()->vertices())
+                {
+                    corners.push_back(pW.toBody(pM.toWorld(v)));
+                }
+                std::vector<const wallMeshShape::plane*> crossed;
                 for (const wallMeshShape::plane& q : planes)
                 {
-                    for (const vec3& v : m->convex()->vertices())
+                    for (const vec3& v : corners)
                     {
-                        if (q.normal.dot(pW.toBody(pM.toWorld(v))) < q.offset - eps)
+                        if (q.normal.dot(v) < q.offset - eps)
                         {
-                            ++crossed;
-                            which = &q;
+                            crossed.push_back(&q);
                             break;
                         }
                     }
                 }
-                if (crossed == 0)
+                // Behind several planes (a pellet in a tube's corner): one
+                // region per plane when the body's parts behind them are
+                // apart (their sum is then the overlap with the wall's
+                // solid, the union of the half-spaces); else the octree
+                bool apart = true;
+                for (size_t i = 0; apart && i < crossed.size(); ++i)
                 {
-                    return g;
+                    for (size_t j = 0; apart && j < crossed.size(); ++j)
+                    {
+                        apart = i == j
+                            || !convexBehindBoth(*m->convex(), corners, *crossed[i], *crossed[j], eps);
+                    }
                 }
-                if (crossed == 1)
+                if (apart)
                 {
-                    const halfSpaceShape plane;
-                    const bodyPose pP = halfSpaceShape::poseOf
-                    (
-                        pW.toWorld(which->offset*which->normal), pW.vectorToWorld(which->normal)
-                    );
-                    return wallFirst
-                        ? convexOverlap().evaluate(plane, pP, B, pB, settings)
-                        : convexOverlap().evaluate(A, pA, plane, pP, settings);
+                    for (const wallMeshShape::plane* q : crossed)
+                    {
+                        const halfSpaceShape plane;
+                        const bodyPose pP = halfSpaceShape::poseOf
+                        (
+                            pW.toWorld(q->offset*q->normal), pW.vectorToWorld(q->normal)
+                        );
+                        const contactGeometry one = wallFirst
+                            ? convexOverlap().evaluate(plane, pP, B, pB, settings)
+                            : convexOverlap().evaluate(A, pA, plane, pP, settings);
+                        g.regions.insert(g.regions.end(), one.regions.begin(), one.regions.end());
+                    }
+                    return g;
                 }
             }
         }

@@ -2,6 +2,7 @@
 #include "immersedDEMState.H"
 #include "dictionaryChecks.H"
 #include "demOutput.H"
+#include "runSummary.H"
 #include "coreError.H"
 #include "clockTime.H"
 #include "addToRunTimeSelectionTable.H"
@@ -144,6 +145,8 @@ Foam::functionObjects::immersedDEM::immersedDEM
     Ca_(1),
     UName_("U")
 {
+    summary_.reset(new ::immersedDEM::runSummary());
+    startTime_ = time_.value();
     read(dict);
     registerInRegion(dict);
     if (Pstream::master())
@@ -168,6 +171,8 @@ Foam::functionObjects::immersedDEM::immersedDEM
         }
     }
     checkBodies(time_.deltaTValue());
+    summary_->track(state_.dem());
+    setupSeconds_ = runClock_.elapsedTime();
 }
 
 
@@ -246,10 +251,14 @@ bool Foam::functionObjects::immersedDEM::execute()
     }
     else if (!warnedNoForcing_)
     {
+        // No fluid at all for the bodies: no lubrication either, so the
+        // DEM is that of immersedDEMSolve on the same dictionary
         WarningInFunction
             << "Function object " << name() << ": no immersedBoundaryForce"
             << " fvOption in constant/fvOptions: the bodies do not feel the"
-            << " fluid and the fluid does not see them" << endl;
+            << " fluid (nor its lubrication) and the fluid does not see them"
+            << endl;
+        state_.dem().setFluidViscosity(0);
         warnedNoForcing_ = true;
     }
 
@@ -274,22 +283,22 @@ bool Foam::functionObjects::immersedDEM::execute()
     const clockTime demTimer;
     try
     {
-        if (output_ && contactsEverySubStep_)
-        {
-            // The DEM's time, not the CFD's: rows inside the CFD step
-            nSteps = state_.dem().advance
-            (
-                deltaT,
-                [this]()
+        // After every sub-step: the extremes for the summary, and the
+        // contacts' rows when asked for (the DEM's time, not the CFD's:
+        // rows inside the CFD step)
+        const bool rows = output_ && contactsEverySubStep_;
+        nSteps = state_.dem().advance
+        (
+            deltaT,
+            [this, rows]()
+            {
+                summary_->track(state_.dem());
+                if (rows)
                 {
                     output_->writeContacts(state_.dem().time(), state_.dem());
                 }
-            );
-        }
-        else
-        {
-            nSteps = state_.dem().advance(deltaT);
-        }
+            }
+        );
     }
     catch (const ::immersedDEM::coreError& err)
     {
@@ -334,6 +343,9 @@ bool Foam::functionObjects::immersedDEM::execute()
     }
     scalar projectionSeconds = 0, forcingSeconds = 0;
     state_.takeTimings(projectionSeconds, forcingSeconds);
+    projectionSeconds_ += projectionSeconds;
+    forcingSeconds_ += forcingSeconds;
+    demSeconds_ += demSeconds;
     Log << type() << ' ' << name() << ": t " << time_.timeName()
         << ", bodies " << state_.nBodies()
         << ", contacts " << state_.dem().contacts().size()
@@ -347,11 +359,13 @@ bool Foam::functionObjects::immersedDEM::execute()
 
     if (output_)
     {
+        const clockTime outputTimer;
         output_->writeBodies(time_.value(), state_.dem());
         if (!contactsEverySubStep_)
         {
             output_->writeContacts(time_.value(), state_.dem());
         }
+        outputSeconds_ += outputTimer.elapsedTime();
     }
     return true;
 }
@@ -363,11 +377,13 @@ bool Foam::functionObjects::immersedDEM::write()
     {
         return true;
     }
+    const clockTime outputTimer;
     state_.writeRestart(time_.timePath());
     if (output_)
     {
         output_->writeVTK(time_.value(), state_.dem());
     }
+    outputSeconds_ += outputTimer.elapsedTime();
     return true;
 }
 
@@ -384,5 +400,22 @@ bool Foam::functionObjects::immersedDEM::end()
         Log << ' ' << word(state_.dem().bodies()[i].name) << ' ' << n[i];
     }
     Log << endl;
+
+    // The seconds per part over the whole run (the DEM's own split from
+    // its counters), against the run's wall time since this function
+    // object started
+    ::immersedDEM::runSummary::seconds parts;
+    parts.setup = setupSeconds_;
+    parts.projection = projectionSeconds_;
+    ::immersedDEM::runSummary::demParts(state_.dem(), demSeconds_, parts);
+    parts.forcing = forcingSeconds_;
+    parts.output = outputSeconds_;
+    parts.total = runClock_.elapsedTime();
+    Log << type() << ' ' << name() << ": "
+        << summary_->text
+           (
+               parts, time_.value() - startTime_, state_.dem().work().steps, true
+           ).c_str()
+        << endl;
     return true;
 }
