@@ -78,6 +78,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         }
     }
 
+    setupSeconds_ = clock_.elapsedTime();
     const label nCells = project();
     Info<< "immersedDEM: projected on " << returnReduce(nCells, sumOp<label>())
         << " cells;";

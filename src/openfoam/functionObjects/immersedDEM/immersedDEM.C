@@ -405,12 +405,12 @@ bool Foam::functionObjects::immersedDEM::end()
     // its counters), against the run's wall time since this function
     // object started
     ::immersedDEM::runSummary::seconds parts;
-    parts.setup = setupSeconds_;
+    parts.setup = state_.setupSeconds() + setupSeconds_;
     parts.projection = projectionSeconds_;
     ::immersedDEM::runSummary::demParts(state_.dem(), demSeconds_, parts);
     parts.forcing = forcingSeconds_;
     parts.output = outputSeconds_;
-    parts.total = runClock_.elapsedTime();
+    parts.total = state_.wallSeconds();
     Log << type() << ' ' << name() << ": "
         << summary_->text
            (
