@@ -20,6 +20,9 @@ Description
 
 Usage
     energyBoxBenchmark [--steps=n] [--laws=potential,volume] [--stl=file]
+                       [--stepsPerContact=n] (default 30) [--octreeOnly]
+    --octreeOnly: convex pairs on the octree too (overlapSettings::
+    convexExact off), as before the exact convex path
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -62,6 +65,8 @@ int main(int argc, char* argv[])
 {
     long steps = 100000;
     std::string laws = "potential,volume";
+    double stepsPerContact = 30;
+    bool convexExact = true;
     std::string stl = std::string(__FILE__);
     stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
         + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
@@ -69,6 +74,8 @@ int main(int argc, char* argv[])
     {
         const std::string a = argv[i];
         if (a.rfind("--steps=", 0) == 0) steps = std::atol(a.c_str() + 8);
+        else if (a.rfind("--stepsPerContact=", 0) == 0) stepsPerContact = std::atof(a.c_str() + 18);
+        else if (a == "--octreeOnly") convexExact = false;
         else if (a.rfind("--laws=", 0) == 0) laws = a.substr(7);
         else if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
         else
@@ -94,7 +101,8 @@ int main(int argc, char* argv[])
             demSettings s;
             s.contactLaw = law;
             s.overlap = {d/10, 2};
-            s.stepsPerContact = 30;
+            s.stepsPerContact = stepsPerContact;
+            s.overlap.convexExact = convexExact;
             s.referenceSpeed = 1;
             demSolver dem({rubber}, s);
             for (int k = 0; k < 6; ++k)

@@ -1,10 +1,10 @@
 #!/bin/bash
 # Packed-bed benchmark: what the showcase caseTemplates/packedBed costs.
 #
-#   validation/benchmarks/packedBedBenchmark.sh [-spheres] [-full] [-endTime T] [-work DIR]
+#   validation/benchmarks/packedBedBenchmark.sh [-spheres] [-full] [-fine] [-endTime T] [-work DIR]
 #
 # Runs the template (serial, its own settings; -spheres pours beads instead
-# of the cylinder pellets, -full the full version) and prints, from the
+# of the cylinder pellets, -full the full version, -fine halves the cells) and prints, from the
 # solver's log, per stage (stage 1: pour and settle, to tFlow; stage 2:
 # water pumped through the bed) and for the whole run:
 # - wall time per simulated second (pimpleFoam's ClockTime over the
@@ -23,7 +23,7 @@ work=/tmp/immersedDEM-benchmark-packedBed; opts=()
 while [ $# -gt 0 ]
 do
     case "$1" in
-        -spheres|-full) opts+=("$1"); shift ;;
+        -spheres|-full|-fine) opts+=("$1"); shift ;;
         -endTime) [ $# -ge 2 ] || { echo "-endTime needs a value" 1>&2; exit 1; }
                   opts+=("$1" "$2"); shift 2 ;;
         -work)    [ $# -ge 2 ] || { echo "-work needs a value" 1>&2; exit 1; }

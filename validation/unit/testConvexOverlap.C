@@ -413,11 +413,34 @@ TEST(convexOverlap, cubeOnAFlatPartOfAWallMesh)
     EXPECT_EQ(none.leaves, 0);
     // In the corner, the floor and both sides crossed, the parts behind
     // the floor and behind a side sharing the cube's bottom corners: the
-    // octree
+    // cube less its part in front of the three planes (the octant x, y,
+    // z > 0, here a big box, clipped exactly), one region; against the
+    // octree within its accuracy
     const bodyPose corner = cube.poseFromFilePlacement(q, vec3(a + 0.001, a + 0.001, a - 2e-5));
-    const contactGeometry c = virtualMeshOverlap().evaluate(cube, corner, tank, wall, s);
-    ASSERT_FALSE(c.regions.empty());
-    EXPECT_GT(c.leaves, 0);
+    const triangleMeshShape octant(primitiveMeshes::box(vec3::Constant(0.05)), "octant");
+    const bodyPose pOctant(vec3::Constant(0.05), quat::Identity());
+    const contactGeometry front = convexOverlap().evaluate(cube, corner, octant, pOctant, s);
+    ASSERT_EQ(front.regions.size(), 1u);
+    const double inWall = cube.volume() - front.volume();
+    const vec3 Sin = -front.regions[0].areaVector;
+    overlapSettings octree = s;
+    octree.convexExact = false;
+    const contactGeometry o = virtualMeshOverlap().evaluate(cube, corner, tank, wall, octree);
+    for (const bool cubeFirst : {true, false})
+    {
+        const contactGeometry c = cubeFirst
+            ? virtualMeshOverlap().evaluate(cube, corner, tank, wall, s)
+            : virtualMeshOverlap().evaluate(tank, wall, cube, corner, s);
+        ASSERT_EQ(c.regions.size(), 1u);
+        EXPECT_EQ(c.leaves, 0);
+        EXPECT_NEAR(c.volume(), inWall, 1e-9*inWall);
+        EXPECT_LT((c.regions[0].areaVector - (cubeFirst ? 1 : -1)*Sin).norm(), 1e-9*Sin.norm());
+        EXPECT_NEAR(c.volume(), o.volume(), 0.01*inWall);
+        // Pointing from the first body into the second: down into the
+        // corner for the cube first
+        const vec3 into(-1, -1, -1);
+        EXPECT_GT((cubeFirst ? 1 : -1)*c.regions[0].normal.dot(into), 0);
+    }
 
     // In the corner off the floor, both sides crossed apart from each
     // other (a pellet in a square tube's corner): one exact region per

@@ -138,19 +138,10 @@ closestApproach lubrication::approach
     const vec3 t = pA.rotation().transpose()*(pB.position() - pA.position());
     const auto* mA = shapeAs<triangleMeshShape>(A);
     const auto* mB = shapeAs<triangleMeshShape>(B);
-    const auto* wallShapeA = shapeAs<wallMeshShape>(A);
-    const auto* wallShapeB = shapeAs<wallMeshShape>(B);
     // A convex body in a locally convex part of a wall mesh: the least
     // height of its corners over the wall's planes there
-    convexWallGap cw;
-    if (wallShapeA && mB && mB->convex())
-    {
-        cw = convexWallDistance(*wallShapeA, pA, mB->convex()->vertices(), B.boundingRadius(), pB, cap);
-    }
-    else if (wallShapeB && mA && mA->convex())
-    {
-        cw = convexWallDistance(*wallShapeB, pB, mA->convex()->vertices(), A.boundingRadius(), pA, cap);
-    }
+    bool wallFirst = false;
+    const convexWallGap cw = convexWallDistance(A, pA, B, pB, cap, wallFirst);
     if (cw.known)
     {
         if (cw.beyondReach || !(cw.gap < cap))
@@ -164,8 +155,8 @@ closestApproach lubrication::approach
             return a;
         }
         a.gap = cw.gap;
-        a.pointA = wallShapeA ? cw.pointWall : cw.pointBody;
-        a.pointB = wallShapeA ? cw.pointBody : cw.pointWall;
+        a.pointA = wallFirst ? cw.pointWall : cw.pointBody;
+        a.pointB = wallFirst ? cw.pointBody : cw.pointWall;
     }
     else if (mA && mB && mA->convex() && mB->convex())
     {

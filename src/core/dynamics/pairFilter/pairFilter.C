@@ -160,17 +160,8 @@ double pairFilter::gapLowerBound
     const auto* mB = shapeAs<triangleMeshShape>(B);
     // A convex body in a locally convex part of a wall mesh: exact too
     {
-        const auto* wallA = shapeAs<wallMeshShape>(A);
-        const auto* wallB = shapeAs<wallMeshShape>(B);
-        convexWallGap cw;
-        if (wallA && mB && mB->convex())
-        {
-            cw = convexWallDistance(*wallA, pA, mB->convex()->vertices(), RB, pB, cap);
-        }
-        else if (wallB && mA && mA->convex())
-        {
-            cw = convexWallDistance(*wallB, pB, mA->convex()->vertices(), RA, pA, cap);
-        }
+        bool wallFirst = false;
+        const convexWallGap cw = convexWallDistance(A, pA, B, pB, cap, wallFirst);
         if (cw.known)
         {
             return cw.gap - 1e-9*std::min(RA, RB);

@@ -1,5 +1,7 @@
 #include "convexDistance.H"
 #include "wallMeshShape.H"
+#include "triangleMeshShape.H"
+#include "convexPolyhedron.H"
 
 #include <algorithm>
 #include <array>
@@ -352,6 +354,30 @@ convexWallGap convexWallDistance
     r.pointBody = pW.toWorld(r.pointBody);
     r.normal = pW.vectorToWorld(r.normal);
     return r;
+}
+
+
+convexWallGap convexWallDistance
+(
+    const shape& A, const bodyPose& pA,
+    const shape& B, const bodyPose& pB,
+    double reach, bool& wallFirst
+)
+{
+    const auto* wA = shapeAs<wallMeshShape>(A);
+    const auto* wB = shapeAs<wallMeshShape>(B);
+    const auto* mA = shapeAs<triangleMeshShape>(A);
+    const auto* mB = shapeAs<triangleMeshShape>(B);
+    wallFirst = wA != nullptr;
+    if (wA && mB && mB->convex())
+    {
+        return convexWallDistance(*wA, pA, mB->convex()->vertices(), B.boundingRadius(), pB, reach);
+    }
+    if (wB && mA && mA->convex())
+    {
+        return convexWallDistance(*wB, pB, mA->convex()->vertices(), A.boundingRadius(), pA, reach);
+    }
+    return convexWallGap();
 }
 
 } // End namespace immersedDEM

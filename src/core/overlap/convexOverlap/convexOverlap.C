@@ -171,6 +171,100 @@ bool clip
     return !w.current.polygons.empty();
 }
 
+// Load a polyhedron's faces (pose p, coordinates about o) as the one
+// being clipped; fromA: its faces are A's surface
+void loadFaces
+(
+    workspace& w, const convexPolyhedron& poly, const bodyPose& p,
+    const vec3& o, bool fromA
+)
+{
+    w.current.clear();
+    const mat3& R = p.rotation();
+    const vec3 t = p.position() - o;
+    for (const convexPolyhedron::face& f : poly.faces())
+    {
+        const int start = int(w.current.points.size());
+        for (int k : f.corners)
+        {
+            w.current.points.push_back(R*poly.vertices()[k] + t);
+            w.current.rim.push_back(0);
+        }
+        w.current.polygons.push_back({start, int(f.corners.size()), fromA});
+    }
+}
+
+
+// The integrals of a polyhedron over its faces: volume, centroid, and
+// over the faces from A the vector area S, its moment M about the
+// centroid, the absolute area, and the rim's length and moments
+struct integrals
+{
+    double volume = 0;
+    vec3 centroid = vec3::Zero();
+    vec3 S = vec3::Zero();
+    vec3 M = vec3::Zero();
+    double absArea = 0;
+    double rimLength = 0;
+    vec3 rimFirst = vec3::Zero();       //!< about the centroid
+    mat3 rimSecond = mat3::Zero();      //!< about the centroid
+};
+
+
+integrals integrate(const polyhedron& X)
+{
+    // About the mean of the corners
+    vec3 ref = vec3::Zero();
+    for (const vec3& x : X.points) ref += x;
+    ref /= double(X.points.size());
+    double sixV = 0;
+    vec3 first = vec3::Zero();
+    vec3 Mref = vec3::Zero();
+    integrals r;
+    for (const polygon& p : X.polygons)
+    {
+        const vec3 a = X.points[p.start] - ref;
+        for (int i = 1; i + 1 < p.count; ++i)
+        {
+            const vec3 b = X.points[p.start + i] - ref;
+            const vec3 c = X.points[p.start + i + 1] - ref;
+            const double six = a.dot(b.cross(c));
+            sixV += six;
+            first += six*(a + b + c);
+            if (p.fromA)
+            {
+                const vec3 va = 0.5*(b - a).cross(c - a);
+                r.S += va;
+                Mref += ((a + b + c)/3).cross(va);
+                r.absArea += va.norm();
+            }
+        }
+        if (p.fromA)
+        {
+            for (int i = 0; i < p.count; ++i)
+            {
+                if (!X.rim[p.start + i]) continue;
+                const vec3 e0 = X.points[p.start + i] - ref;
+                const vec3 e1 = X.points[p.start + (i + 1)%p.count] - ref;
+                const double L = (e1 - e0).norm();
+                r.rimLength += L;
+                r.rimFirst += 0.5*L*(e0 + e1);
+                r.rimSecond +=
+                    L/3*(e0*e0.transpose() + e1*e1.transpose())
+                  + L/6*(e0*e1.transpose() + e1*e0.transpose());
+            }
+        }
+    }
+    r.volume = sixV/6;
+    const vec3 c = sixV != 0 ? vec3(first/(4*sixV)) : vec3::Zero();
+    r.centroid = c + ref;
+    r.M = Mref - c.cross(r.S);
+    // The rim's moments about the centroid
+    r.rimSecond += -c*r.rimFirst.transpose() - r.rimFirst*c.transpose() + r.rimLength*c*c.transpose();
+    r.rimFirst -= r.rimLength*c;
+    return r;
+}
+
 } // End anonymous namespace
 
 
@@ -230,21 +324,7 @@ contactGeometry convexOverlap::evaluate
     const double eps = 1e-12*std::max(rP, rC);
 
     static thread_local workspace w;
-    w.current.clear();
-    {
-        const mat3& R = pP.rotation();
-        const vec3 t = pP.position() - o;
-        for (const convexPolyhedron::face& f : poly.faces())
-        {
-            const int start = int(w.current.points.size());
-            for (int k : f.corners)
-            {
-                w.current.points.push_back(R*poly.vertices()[k] + t);
-                w.current.rim.push_back(0);
-            }
-            w.current.polygons.push_back({start, int(f.corners.size()), !clipperIsA});
-        }
-    }
+    loadFaces(w, poly, pP, o, !clipperIsA);
 
     // The clipping planes, those facing the clipped body first
     w.planes.clear();
@@ -281,73 +361,28 @@ contactGeometry convexOverlap::evaluate
         if (!clip(w, w.planes[i], clipperIsA, eps)) return g;
     }
 
-    // Integrals over the faces, about the mean of the corners
-    const polyhedron& X = w.current;
-    vec3 ref = vec3::Zero();
-    for (const vec3& x : X.points) ref += x;
-    ref /= double(X.points.size());
-    double sixV = 0;
-    vec3 first = vec3::Zero();
-    vec3 S = vec3::Zero(), Mref = vec3::Zero();
-    double absArea = 0;
-    double rimLength = 0;
-    vec3 rimFirst = vec3::Zero();
-    mat3 rimSecond = mat3::Zero();
-    for (const polygon& p : X.polygons)
-    {
-        const vec3 a = X.points[p.start] - ref;
-        for (int i = 1; i + 1 < p.count; ++i)
-        {
-            const vec3 b = X.points[p.start + i] - ref;
-            const vec3 c = X.points[p.start + i + 1] - ref;
-            const double six = a.dot(b.cross(c));
-            sixV += six;
-            first += six*(a + b + c);
-            if (p.fromA)
-            {
-                const vec3 va = 0.5*(b - a).cross(c - a);
-                S += va;
-                Mref += ((a + b + c)/3).cross(va);
-                absArea += va.norm();
-            }
-        }
-        if (p.fromA)
-        {
-            for (int i = 0; i < p.count; ++i)
-            {
-                if (!X.rim[p.start + i]) continue;
-                const vec3 e0 = X.points[p.start + i] - ref;
-                const vec3 e1 = X.points[p.start + (i + 1)%p.count] - ref;
-                const double L = (e1 - e0).norm();
-                rimLength += L;
-                rimFirst += 0.5*L*(e0 + e1);
-                rimSecond +=
-                    L/3*(e0*e0.transpose() + e1*e1.transpose())
-                  + L/6*(e0*e1.transpose() + e1*e0.transpose());
-            }
-        }
-    }
-    const double volume = sixV/6;
+    const integrals X = integrate(w.current);
+    const double volume = X.volume;
     const double Vmin = std::min(cA ? A.volume() : B.volume(), cB ? B.volume() : A.volume());
     if (!(volume > 1e-12*Vmin)) return g;
 
     contactRegion r;
     r.volume = volume;
-    const vec3 c = first/(4*sixV);
-    r.point = c + ref + o;
+    r.point = X.centroid + o;
     const vec3 centreLine = pB.position() - pA.position();
-    if (S.norm() > 1e-9*absArea)
+    const vec3& S = X.S;
+    if (S.norm() > 1e-9*X.absArea)
     {
         r.area = S.norm();
         r.areaVector = S;
-        r.areaMoment = Mref - c.cross(S);
+        r.areaMoment = X.M;
         r.normal = S/r.area;
-        if (!settings.areaVectorNormal && rimLength > 0)
+        if (!settings.areaVectorNormal && X.rimLength > 0)
         {
             // The least-squares plane through the rim (a curve of
             // segments, uniform along its length)
-            const vec3 m = rimFirst/rimLength;
-            const mat3 cov = rimSecond/rimLength - m*m.transpose();
+            const vec3 m = X.rimFirst/X.rimLength;
+            const mat3 cov = X.rimSecond/X.rimLength - m*m.transpose();
             const Eigen::SelfAdjointEigenSolver<mat3> eig(cov);
             const vec3 l = eig.eigenvalues();
             if (l[2] > 0 && l[1] > 1e-6*l[2] && l[0] < 0.25*l[1])
@@ -364,6 +399,68 @@ contactGeometry convexOverlap::evaluate
     }
     g.regions.push_back(r);
     return g;
+}
+
+
+bool convexOverlap::againstWall
+(
+    const shape& M, const bodyPose& pM,
+    const std::vector<std::pair<vec3, double>>& wallPlanes,
+    bool meshFirst,
+    contactGeometry& g
+)
+{
+    g = contactGeometry();
+    const convexPolyhedron* poly = convexOf(M);
+    if (!poly || wallPlanes.empty())
+    {
+        return false;
+    }
+    const vec3 o = pM.position();
+    const double eps = 1e-12*poly->radius();
+    static thread_local workspace w;
+
+    // The whole body, then its part in front of every plane (the fluid's
+    // side): the overlap is the rest
+    loadFaces(w, *poly, pM, o, true);
+    const integrals P = integrate(w.current);
+    bool left = true;
+    for (const auto& q : wallPlanes)
+    {
+        // Fluid: n.x >= c, i.e. (-n).x <= -c, about o
+        left = clip(w, {-q.first, -(q.second - q.first.dot(o))}, false, eps);
+        if (!left) break;
+    }
+    if (!left)
+    {
+        // Nothing in front of the planes: wholly in the wall
+        return false;
+    }
+    const integrals F = integrate(w.current);
+    const double V = P.volume - F.volume;
+    if (!(V > 1e-12*P.volume))
+    {
+        return true;    // touching at most: no region
+    }
+    contactRegion r;
+    r.volume = V;
+    const vec3 c = (P.volume*P.centroid - F.volume*F.centroid)/V;
+    r.point = c + o;
+    // The body's surface is closed: its part in the wall has the vector
+    // area and moment opposite to those of its part in front
+    const vec3 S = -F.S;
+    const vec3 Mo = -(F.M + (F.centroid - c).cross(F.S));
+    if (!(S.norm() > 1e-9*P.absArea))
+    {
+        return false;
+    }
+    const double sign = meshFirst ? 1 : -1;
+    r.area = S.norm();
+    r.areaVector = sign*S;
+    r.areaMoment = sign*Mo;
+    r.normal = sign*S/r.area;
+    g.regions.push_back(r);
+    return true;
 }
 
 } // End namespace immersedDEM

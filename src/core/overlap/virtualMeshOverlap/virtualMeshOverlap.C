@@ -1098,6 +1098,19 @@ contactGeometry virtualMeshOverlap::evaluate
                     }
                     return g;
                 }
+                // Parts shared (a pellet pressed into a round tube's
+                // facets, or into a corner): the body less its part in
+                // front of every plane, one region
+                std::vector<std::pair<vec3, double>> world;
+                for (const wallMeshShape::plane& q : planes)
+                {
+                    const vec3 n = pW.vectorToWorld(q.normal);
+                    world.emplace_back(n, n.dot(pW.toWorld(q.offset*q.normal)));
+                }
+                if (convexOverlap::againstWall(*m, pM, world, !wallFirst, g))
+                {
+                    return g;
+                }
             }
         }
     }
