@@ -154,11 +154,8 @@ double pairFilter::gapLowerBound
     const mat3 R = pA.rotation().transpose()*pB.rotation();
     const vec3 t = pA.rotation().transpose()*(pB.position() - pA.position());
 
-    // Two convex meshes: the exact distance of their corners' hulls
-    // (GJK), less round-off; no surface inside the other can hide there
-    const auto* mA = shapeAs<triangleMeshShape>(A);
-    const auto* mB = shapeAs<triangleMeshShape>(B);
-    // A convex body in a locally convex part of a wall mesh: exact too
+    // A convex body in a locally convex part of a wall mesh: the least
+    // height of its corners over the wall's planes, exact
     {
         bool wallFirst = false;
         const convexWallGap cw = convexWallDistance(A, pA, B, pB, cap, wallFirst);
@@ -167,6 +164,10 @@ double pairFilter::gapLowerBound
             return cw.gap - 1e-9*std::min(RA, RB);
         }
     }
+    // Two convex meshes: the exact distance of their corners' hulls
+    // (GJK), less round-off; no surface inside the other can hide there
+    const auto* mA = shapeAs<triangleMeshShape>(A);
+    const auto* mB = shapeAs<triangleMeshShape>(B);
     if (mA && mB && mA->convex() && mB->convex())
     {
         const convexClosest c =
