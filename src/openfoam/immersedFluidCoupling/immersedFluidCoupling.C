@@ -21,6 +21,31 @@ namespace
 constexpr auto v = &Foam::coreConversion::toFoam;
 constexpr auto c = &Foam::coreConversion::toCore;
 
+// measuredAddedMass::fields visitors: each member under prefix + its name
+struct measuredWriter
+{
+    Foam::Ostream& os;
+    const Foam::word prefix;
+    void operator()(const char* name, const vec3& x) { os.writeEntry(Foam::word(prefix + name), v(x)); }
+    void operator()(const char* name, const double x) { os.writeEntry(Foam::word(prefix + name), x); }
+};
+
+// Missing entries (a restart written before the measurement) keep the
+// member as it is
+struct measuredReader
+{
+    const Foam::dictionary& d;
+    const Foam::word prefix;
+    void operator()(const char* name, vec3& x)
+    {
+        x = c(d.getOrDefault<Foam::vector>(prefix + name, v(x)));
+    }
+    void operator()(const char* name, double& x)
+    {
+        x = d.getOrDefault<Foam::scalar>(prefix + name, x);
+    }
+};
+
 } // End anonymous namespace
 
 
@@ -31,6 +56,9 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     innerAngularMomentum_.setSize(n, Zero);
     previousVelocity_.setSize(n, Zero);
     previousAngularVelocity_.setSize(n, Zero);
+    addedMass_.setSize(n);
+    addedInertia_.setSize(n);
+    reportedAddedMass_.setSize(n, 0);
     for (label i = 0; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -235,7 +263,8 @@ void Foam::immersedFluidCoupling::fluidLoads
     const volVectorField& U,
     scalar rho,
     scalar deltaT,
-    scalar Ca
+    scalar Ca,
+    bool measure
 )
 {
     const clockTime timer;
@@ -257,7 +286,6 @@ void Foam::immersedFluidCoupling::fluidLoads
         (
             rho, c(PM[i]), c(L[i]), c(innerAngularMomentum_[i]), deltaT
         );
-        // The added moment of inertia from the mean principal moment
         if (debug)
         {
             Info<< "immersedFluidCoupling loads " << word(b.name)
@@ -266,10 +294,35 @@ void Foam::immersedFluidCoupling::fluidLoads
                 << " innerRate " << rho*(M[i] - innerMomentum_[i])/deltaT
                 << " v " << v(b.velocity) << endl;
         }
-        const scalar Ia = Ca*rho/b.density*b.inertia().sum()/3;
+        // The stabilisation's added mass and moment of inertia (the mean
+        // principal moment): Ca's, or the measured ones when larger
+        // (at most those of the keyword's largest Ca, 100)
+        const scalar unitMass = rho*Vb;
+        const scalar unitInertia = rho/b.density*b.inertia().sum()/3;
+        scalar ma = Ca*unitMass;
+        scalar Ia = Ca*unitInertia;
+        // The smallest change of acceleration worth measuring: 1e-2 m/s2,
+        // over the body's size for rotation
+        const scalar aFloor = 1e-2;
+        addedMass_[i].record
+        (
+            F, (b.velocity - c(previousVelocity_[i]))/deltaT, sqr(aFloor)
+        );
+        addedInertia_[i].record
+        (
+            T, (b.angularVelocity - c(previousAngularVelocity_[i]))/deltaT,
+            sqr(aFloor)/pow(Vb, 2.0/3.0)
+        );
+        if (measure)
+        {
+            const scalar cap = 100;
+            ma = max(ma, min(addedMass_[i].value(), cap*unitMass));
+            Ia = max(Ia, min(addedInertia_[i].value(), cap*unitInertia));
+            noteAddedMass(i, ma/unitMass, Ca, U.time().value(), b.name);
+        }
         b.fluid = fluidLoad::stabilised
         (
-            F, T, Ca*rho*Vb, Ia, deltaT, dem.time(),
+            F, T, ma, Ia, deltaT, dem.time(),
             b.velocity, c(previousVelocity_[i]),
             b.angularVelocity, c(previousAngularVelocity_[i])
         );
@@ -278,7 +331,46 @@ void Foam::immersedFluidCoupling::fluidLoads
         innerMomentum_[i] = M[i];
         innerAngularMomentum_[i] = L[i];
     }
+    reportAddedMass(Ca, U.time().value());
     seconds_ += timer.elapsedTime();
+}
+
+
+void Foam::immersedFluidCoupling::noteAddedMass
+(
+    const label i,
+    const scalar coefficient,
+    const scalar Ca,
+    const scalar t,
+    const word& name
+)
+{
+    if (coefficient <= Ca || coefficient < 2*reportedAddedMass_[i])
+    {
+        return;
+    }
+    reportedAddedMass_[i] = coefficient;
+    ++raised_;
+    if (coefficient > largestRaised_)
+    {
+        largestRaised_ = coefficient;
+        largestRaisedBody_ = name;
+    }
+}
+
+
+void Foam::immersedFluidCoupling::reportAddedMass(const scalar Ca, const scalar t)
+{
+    if (raised_ > 0)
+    {
+        Info<< "immersedDEM: t = " << t << ": the fluid solver's added mass"
+            << " measured above addedMassCoefficient " << Ca
+            << " rho V (and twice the last reported) for " << raised_
+            << " bodies, largest " << largestRaised_ << " rho V ("
+            << largestRaisedBody_ << "); their stabilisation uses it" << endl;
+    }
+    raised_ = 0;
+    largestRaised_ = 0;
 }
 
 
@@ -311,8 +403,23 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(innerAngularMomentum_);
     remap(previousVelocity_);
     remap(previousAngularVelocity_);
+    auto remapList = [&](auto& l)
+    {
+        typename std::decay<decltype(l)>::type m(n);
+        for (label i = 0; i < firstNew; ++i)
+        {
+            m[i] = l[kept.empty() ? i : kept[i]];
+        }
+        l.transfer(m);
+    };
+    remapList(addedMass_);
+    remapList(addedInertia_);
+    remapList(reportedAddedMass_);
     for (label i = firstNew; i < n; ++i)
     {
+        addedMass_[i].reset();
+        addedInertia_[i].reset();
+        reportedAddedMass_[i] = 0;
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
         previousAngularVelocity_[i] = v(dem.bodies()[i].angularVelocity);
     }
@@ -347,6 +454,8 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("previousAngularVelocity", previousAngularVelocity_[i]);
     os.writeEntry("innerMomentum", innerMomentum_[i]);
     os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
+    measuredAddedMass::fields(addedMass_[i], measuredWriter{os, "addedMass"});
+    measuredAddedMass::fields(addedInertia_[i], measuredWriter{os, "addedInertia"});
 }
 
 
@@ -357,4 +466,10 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
     innerMomentum_[i] = d.get<vector>("innerMomentum");
     innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
     innerMomentumSet_ = true;
+    // Restart files written before the measurement have none: it starts
+    // again from nothing
+    addedMass_[i].reset();
+    addedInertia_[i].reset();
+    measuredAddedMass::fields(addedMass_[i], measuredReader{d, "addedMass"});
+    measuredAddedMass::fields(addedInertia_[i], measuredReader{d, "addedInertia"});
 }

@@ -188,7 +188,8 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "addedMassCoefficient", "maxSubSteps", "writeContacts"
+            "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "maxSubSteps",
+            "writeContacts"
         }
     );
     contactsEverySubStep_ =
@@ -196,6 +197,7 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
     maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
+    measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
     UName_ = dict.getOrDefault<word>("U", "U");
     setViscosity();
     return true;
@@ -247,7 +249,7 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
-        state_.fluidLoads(*U, rhoInf_, deltaT, Ca_);
+        state_.fluidLoads(*U, rhoInf_, deltaT, Ca_, measureAddedMass_);
     }
     else if (!warnedNoForcing_)
     {
