@@ -4,8 +4,8 @@
 // immersedFluidCoupling::fluidLoads couples the real one (the force held
 // over the next step, stabilised by m_a). With m_a = Ca rho V and
 // M > m + 2 m_a the coupling is unstable, as in the packed bed at 3 cells
-// per pellet (M = 3.5-5.8 rho V, m = 2.5 rho V, Ca = 1); with m_a at least
-// the measured M it settles.
+// per pellet (M = 3.5-5.8 rho V, m = 2.5 rho V, Ca = 1); with m_a from
+// the measured M (measuredAddedMass::stabilisation) it settles.
 
 #include "demSolver.H"
 #include "measuredAddedMass.H"
@@ -30,7 +30,7 @@ struct modelRun
 
 // A 2.5 g/cm3 sphere falling sideways (x) in a model fluid of density 1000
 // with added mass M = kM rho V, drag c, CFD step dt; Ca the stabilisation's
-// coefficient; measure: m_a = max(Ca rho V, measured)
+// coefficient; measure: m_a from the measured M, at least Ca rho V
 modelRun run(const double kM, const double Ca, const bool measure, const int steps)
 {
     const double dt = 1e-3, rho = 1000;
@@ -53,7 +53,8 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
         const vec3 a = (b.velocity - vPrevious)/dt;
         const vec3 F = -M*a + vec3(W, 0, 0) - c*b.velocity;
         est.record(F, a, 1e-4);
-        const double ma = measure ? std::max(Ca*rho*V, est.value()) : Ca*rho*V;
+        const double ma =
+            measure ? est.stabilisation(m, Ca*rho*V, 100*rho*V) : Ca*rho*V;
         b.fluid = fluidLoad::stabilised
         (
             F, vec3::Zero(), ma, 0, dt, dem.time(),
@@ -68,7 +69,6 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
     }
     r.finalVelocity = b.velocity.x();
     r.measured = est.value()/(rho*V);
-    (void)m;
     return r;
 }
 
@@ -101,8 +101,10 @@ TEST(measuredAddedMass, measuredAddedMassSettlesWhatTheCoefficientCannot)
             // The fluid's own added mass, measured while the body
             // accelerated from rest; the drag's change (-c dv, dv along
             // the change of acceleration's opposite while the approach is
-            // smooth) pulls the fit down: 5.4 for 7, 22 for 30
-            EXPECT_GT(r.measured, 0.7*kM) << "M = " << kM << " rho V";
+            // smooth) pulls the fit down: 5.4 for 7, 20.6 for 30 (an
+            // oscillation, where it matters, is measured within 1%: the
+            // next test)
+            EXPECT_GT(r.measured, 0.6*kM) << "M = " << kM << " rho V";
             EXPECT_LT(r.measured, 1.001*kM) << "M = " << kM << " rho V";
         }
     }
@@ -140,4 +142,22 @@ TEST(measuredAddedMass, holdsItsValueWhileTheDataSayNothing)
     EXPECT_EQ(other.value(), 0);
     est.reset();
     EXPECT_EQ(est.value(), 0);
+}
+
+
+TEST(measuredAddedMass, stabilisationOnlyWhereTheCouplingNeedsIt)
+{
+    measuredAddedMass est;
+    for (int n = 0; n < 10; ++n)
+    {
+        const vec3 a(n % 2 ? 1.0 : -1.0, 0, 0);
+        est.record(-0.01*a, a, 1e-4);
+    }
+    ASSERT_NEAR(est.value(), 0.01, 1e-12);
+    // M - m/2 for a body of 5 g; the floor and the cap bound it
+    EXPECT_NEAR(est.stabilisation(0.005, 1e-3, 1), 0.0075, 1e-12);
+    EXPECT_NEAR(est.stabilisation(0.005, 1e-3, 0.004), 0.004, 1e-12);
+    // A body much heavier than M (a glass sphere in air): its own inertia
+    // keeps the coupling stable; the floor (Ca rho V) stays
+    EXPECT_EQ(est.stabilisation(1.0, 1e-6, 1), 1e-6);
 }

@@ -7,7 +7,11 @@ namespace immersedDEM
 
 void measuredAddedMass::record(const vec3& F, const vec3& a, const double floor)
 {
-    if (recorded_ >= 1)
+    if (skip_ > 0)
+    {
+        skip_ -= 1;
+    }
+    else if (recorded_ >= 1)
     {
         const vec3 dF = F - lastForce_;
         const vec3 da = a - lastAcceleration_;
@@ -21,6 +25,17 @@ void measuredAddedMass::record(const vec3& F, const vec3& a, const double floor)
     lastForce_ = F;
     lastAcceleration_ = a;
     recorded_ = 1;
+}
+
+
+double measuredAddedMass::stabilisation
+(
+    const double m,
+    const double floor,
+    const double cap
+) const
+{
+    return std::max(floor, std::min(value_ - 0.5*m, cap));
 }
 
 } // End namespace immersedDEM
