@@ -115,23 +115,17 @@ void Foam::immersedFluidCoupling::fluidSums
     const labelList& bodyOf = projection.bodyOf();
     const labelList& secondOf = projection.secondOf();
     const scalarField& secondLambda = projection.secondLambda();
-    // Per body: the sum of K V over its forced cells and of K V r, for the
-    // centre of the forced cells (see below)
-    List<vector> forcedMoment(n, Zero);
-    List<scalar> forcedWeight(n, Zero);
     for (const label celli : projection.touched())
     {
         const label i = bodyOf[celli];
         if (i < 0) continue;
         const scalar w = lambda[celli]*V[celli];
         const vector r = C[celli] - v(dem.bodies()[i].pose.position());
-        const scalar KV = projection.cellCoefficient(celli, deltaT)*V[celli];
-        const vector d = KV*(U[celli] - Uib[celli]);
+        const vector d =
+            projection.cellCoefficient(celli, deltaT)*V[celli]*(U[celli] - Uib[celli]);
         const vector m = w*U[celli];
         penalty[i] += d;
         penaltyMoment[i] += r ^ d;
-        forcedWeight[i] += KV;
-        forcedMoment[i] += KV*r;
         momentum[i] += m;
         angularMomentum[i] += r ^ m;
 
@@ -150,33 +144,9 @@ void Foam::immersedFluidCoupling::fluidSums
     {
         sealedFacePressure(projection, dem, U, deltaT, penalty, penaltyMoment);
     }
-    for
-    (
-        List<vector>* l
-      : {&penalty, &penaltyMoment, &momentum, &angularMomentum, &forcedMoment}
-    )
+    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
     {
         immersedDEMParallel::sumOverProcessors(*l);
-    }
-    immersedDEMParallel::sumOverProcessors(forcedWeight);
-
-    // The forced cells' centre is not the body's centroid: the cells whose
-    // centres lie inside a body reach up to half a cell beyond its surface
-    // on one side and fall short on the other, wherever the lattice puts
-    // them. The net force of the penalty, applied over those cells, then
-    // has an arm to the centroid that the body does not have: a cube
-    // falling 0.36 mm off the lattice's symmetry at 3 cells across got
-    // 3-8e-6 N m from its 0.015 N drag and turned at 1-3 rad/s. The
-    // torque is taken about the forced cells' centre (weights K V) instead:
-    // what the distribution of the forcing says about the turning stays,
-    // the lattice's offset goes (T - delta x P, delta that centre's offset)
-    forAll(penalty, i)
-    {
-        if (forcedWeight[i] > 0)
-        {
-            const vector delta = forcedMoment[i]/forcedWeight[i];
-            penaltyMoment[i] -= delta ^ penalty[i];
-        }
     }
 }
 
@@ -505,36 +475,25 @@ void Foam::immersedFluidCoupling::bodiesChanged
 )
 {
     const label n = dem.bodies().size();
-    auto remap = [&](List<vector>& l)
+    // Kept bodies' entries to their new places; new bodies' set to fill
+    auto remap = [&](auto& l, const auto& fill)
     {
-        List<vector> m(n, Zero);
+        typename std::decay<decltype(l)>::type m(n, fill);
         for (label i = 0; i < firstNew; ++i)
         {
             m[i] = l[kept.empty() ? i : kept[i]];
         }
         l.transfer(m);
     };
-    remap(innerMomentum_);
-    remap(innerAngularMomentum_);
-    remap(previousVelocity_);
-    remap(previousAngularVelocity_);
-    auto remapList = [&](auto& l)
-    {
-        typename std::decay<decltype(l)>::type m(n);
-        for (label i = 0; i < firstNew; ++i)
-        {
-            m[i] = l[kept.empty() ? i : kept[i]];
-        }
-        l.transfer(m);
-    };
-    remapList(addedMass_);
-    remapList(addedInertia_);
-    remapList(reportedAddedMass_);
+    remap(innerMomentum_, vector::zero);
+    remap(innerAngularMomentum_, vector::zero);
+    remap(previousVelocity_, vector::zero);
+    remap(previousAngularVelocity_, vector::zero);
+    remap(addedMass_, measuredAddedMass());
+    remap(addedInertia_, measuredAddedMass());
+    remap(reportedAddedMass_, scalar(0));
     for (label i = firstNew; i < n; ++i)
     {
-        addedMass_[i].reset();
-        addedInertia_[i].reset();
-        reportedAddedMass_[i] = 0;
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
         previousAngularVelocity_[i] = v(dem.bodies()[i].angularVelocity);
     }

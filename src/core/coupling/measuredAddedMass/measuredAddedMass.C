@@ -35,7 +35,7 @@ double measuredAddedMass::stabilisation
     const double cap
 ) const
 {
-    return std::max(floor, std::min(value_ - 0.5*m, cap));
+    return value_ > m ? std::max(floor, std::min(value_, cap)) : floor;
 }
 
 } // End namespace immersedDEM
