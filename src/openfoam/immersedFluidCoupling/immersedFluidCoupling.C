@@ -336,12 +336,7 @@ void Foam::immersedFluidCoupling::sealedFacePressure
             }
             else if (wallFaces && U.boundaryField()[patchi].fixesValue())
             {
-                // Against a wall the whole face pressure still goes: with
-                // the fit kept there, the cube pushed at a side wall
-                // (case wallPush) rebounded at 0.27 m/s from 0.46 with a
-                // fluid force of 2.5 N at the impact, outside that
-                // test's limits; not looked into yet
-                remove(i, S, pb[pfi], x, 0);
+                remove(i, S, pb[pfi], x, pAround(i, x));
             }
         }
     }
