@@ -15,7 +15,8 @@ Description
       energy back within 0.1%, with contacts reused;
     - a sphere and two blocks in a closed box of six planes (e = 1,
       mu = 0, no gravity): the kinetic energy at contact-free moments
-      within 0.1% over 1e5 steps at stepsPerContact 30.
+      within 0.1% over 1e5 steps at stepsPerContact 30, at the default
+      level (the suite runs 2e4).
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -234,12 +235,12 @@ struct energyRun
 
 // A sphere and two blocks (the templates' block.stl, 10 x 6 x 4 mm) in a
 // closed box of six planes, e = 1, mu = 0, no gravity (issue 19)
-energyRun closedBox(const std::string& law, long steps, bool reuse = true)
+energyRun closedBox(const std::string& law, long steps, int level, bool reuse = true)
 {
     contactMaterial rubber{"rubber", 1e6, 0.45, 1.0, 0};
     demSettings s;
     s.contactLaw = law;
-    s.overlap = {2e-3, 2};          // the bouncingBodies template's
+    s.overlap = {2e-3, level};      // the bouncingBodies template's cell
     s.stepsPerContact = 30;
     s.referenceSpeed = 1;
     s.reuseContacts = reuse;
@@ -296,30 +297,41 @@ energyRun closedBox(const std::string& law, long steps, bool reuse = true)
 
 TEST(potentialContact, closedBoxKeepsTheEnergy)
 {
-    // Measured over 1e5 steps (IMMERSEDDEM_ENERGY_STEPS=100000
-    // IMMERSEDDEM_VOLUME_LAW=1, 11 min): volume law worst drift 8.6% with
-    // reuse, 6.7% without; potential law 0.35% (final 0.30%). The issue's
-    // 0.1% is not met: the virtual mesh's S is not exactly the slope of its
-    // own V (level 2 here), and the reused contacts' energy jumps. The
-    // suite runs the first 2e4 steps and holds the measured 0.5% bound
+    // The bodies' pairs: ball-wall exact (a sphere and a plane), block-wall
+    // and block-block exact (convex), ball-block on the octree. Measured
+    // over 1e5 steps (IMMERSEDDEM_ENERGY_STEPS=100000, 20 s): at level 4
+    // (the default level) worst drift 0.018%, final -0.017%; at the
+    // bouncingBodies template's level 2 (leaves of 0.5 mm against a 4 mm
+    // block) 0.195%, nearly all of it from one ball-block contact (+0.18%),
+    // level 3 0.074%: the octree's volume at that resolution, not the law
+    // (with every contact measured afresh, no reuse, the same figures).
+    // Before the exact convex pairs (the blocks on the octree too), 0.35%
+    // at level 2. IMMERSEDDEM_VOLUME_LAW=1 adds the volume law (8.6% with
+    // reuse, 6.7% without, at level 2, before the convex pairs). The suite
+    // runs the first 2e4 steps, at level 4 against the issue's 0.1%, and
+    // at level 2 printed
     long steps = 20000;
     if (const char* n = std::getenv("IMMERSEDDEM_ENERGY_STEPS")) steps = std::atol(n);
     if (std::getenv("IMMERSEDDEM_VOLUME_LAW"))
     {
         for (const bool reuse : {true, false})
         {
-            const energyRun vol = closedBox("volume", steps, reuse);
-            std::cout << "closed box, volume law, reuse " << reuse << ": dt " << vol.dt
+            const energyRun vol = closedBox("volume", steps, 2, reuse);
+            std::cout << "closed box, volume law, level 2, reuse " << reuse << ": dt " << vol.dt
                 << " s, worst drift " << vol.worstDrift << ", final " << vol.finalDrift
                 << ", contact steps " << vol.contactSteps << std::endl;
         }
     }
-    const energyRun pot = closedBox("potential", steps);
-    std::cout << "closed box, potential: dt " << pot.dt << " s, worst drift " << pot.worstDrift
-        << ", final " << pot.finalDrift << ", contact steps " << pot.contactSteps << std::endl;
-    EXPECT_GT(pot.contactSteps, 1000);
-    EXPECT_GT(pot.freeMoments, 1000);
-    EXPECT_LT(pot.worstDrift, 5e-3);
+    for (const int level : {2, 4})
+    {
+        const energyRun pot = closedBox("potential", steps, level);
+        std::cout << "closed box, potential, level " << level << ": dt " << pot.dt
+            << " s, worst drift " << pot.worstDrift << ", final " << pot.finalDrift
+            << ", contact steps " << pot.contactSteps << std::endl;
+        EXPECT_GT(pot.contactSteps, 1000);
+        EXPECT_GT(pot.freeMoments, 1000);
+        EXPECT_LT(pot.worstDrift, level == 4 ? 1e-3 : 5e-3) << "level " << level;
+    }
 }
 
 

@@ -392,6 +392,81 @@ private:
     }
 };
 
+
+//- A planar convex polygon: a triangle or a plane's square clipped by a
+//  leaf's six faces and one more plane (at most 3 + 7 corners)
+struct leafPolygon
+{
+    static constexpr int maxCorners = 16;
+    int n = 0;
+    vec3 x[maxCorners];
+
+    //- Keep the part where normal.x <= offset; corners within tol of the
+    //  plane count as on it
+    void keepBelow(const vec3& normal, double offset, double tol)
+    {
+        if (n == 0) return;
+        double d[maxCorners];
+        for (int k = 0; k < n; ++k)
+        {
+            d[k] = normal.dot(x[k]) - offset;
+            if (std::abs(d[k]) <= tol) d[k] = 0;
+        }
+        vec3 out[maxCorners];
+        int m = 0;
+        for (int k = 0; k < n; ++k)
+        {
+            const int l = (k + 1) % n;
+            if (d[k] <= 0 && m < maxCorners) out[m++] = x[k];
+            if ((d[k] < 0 && d[l] > 0) || (d[k] > 0 && d[l] < 0))
+            {
+                if (m < maxCorners) out[m++] = x[k] + (d[k]/(d[k] - d[l]))*(x[l] - x[k]);
+            }
+        }
+        n = m < 3 ? 0 : m;
+        for (int k = 0; k < n; ++k) x[k] = out[k];
+    }
+
+    //- Keep the part within the leaf (c, s). A polygon of outward normal
+    //  nu lying on a face of the leaf belongs to the leaf on its body's
+    //  side (nu leaving the leaf), so that a face of a body on a lattice
+    //  plane counts once, in the leaf the body fills
+    void keepInLeaf(const vec3& c, double s, const vec3& nu)
+    {
+        const double tol = 1e-9*s;
+        for (int ax = 0; ax < 3 && n > 0; ++ax)
+        {
+            const double lo = c[ax] - 0.5*s, hi = c[ax] + 0.5*s;
+            bool onLow = true, onHigh = true;
+            for (int k = 0; k < n; ++k)
+            {
+                onLow = onLow && std::abs(x[k][ax] - lo) <= tol;
+                onHigh = onHigh && std::abs(x[k][ax] - hi) <= tol;
+            }
+            if ((onLow && nu[ax] >= 0) || (onHigh && nu[ax] <= 0))
+            {
+                n = 0;
+                return;
+            }
+            keepBelow(vec3::Unit(ax), hi, tol);
+            keepBelow(-vec3::Unit(ax), -lo, tol);
+        }
+    }
+
+    //- Its area (along unit normal nu) and first moment of area
+    void integrals(const vec3& nu, double& area, vec3& first) const
+    {
+        area = 0;
+        first = vec3::Zero();
+        for (int k = 1; k + 1 < n; ++k)
+        {
+            const double a = 0.5*(x[k] - x[0]).cross(x[k + 1] - x[0]).dot(nu);
+            area += a;
+            first += (a/3)*(x[0] + x[k] + x[k + 1]);
+        }
+    }
+};
+
 class octreeWalk
 {
     const shape& A_;
@@ -828,14 +903,26 @@ public:
                 }
             }
         }
-        if (volume <= 0)
+        // Where B is one plane in the leaf (or holds it), A's surface inside
+        // it exactly: each of A's triangles (or its tangent plane) clipped
+        // by the leaf and by B's plane. Sampled at the columns instead, the
+        // area jumps by a column wherever the rim crosses one, and a
+        // symmetric contact's normal leaves its mirror plane (issue 19).
+        // Measured apart from the columns: a face parallel to them may
+        // bound a sliver of the leaf that no column centre samples
+        const bool clipped = !inA && !fB;
+        if (clipped)
+        {
+            clippedAreaOfA(c, s, inB, a, b, fA != nullptr, areaA, momentA);
+        }
+        if (volume <= 0 && areaA.squaredNorm() == 0)
         {
             return;
         }
 
         // A's tangent plane inside B: its outward area vector, from where
         // the plane crosses n x n columns along the axis it faces most
-        if (!inA && !areaFromFacets)
+        if (!inA && !areaFromFacets && !clipped)
         {
             int axA = 0;
             a.normal.cwiseAbs().maxCoeff(&axA);
@@ -893,6 +980,83 @@ public:
     }
 
 private:
+
+    //- A's surface in the leaf (c, s) inside B (all of it when inB, else
+    //  below B's tangent plane): area vector and its moment about the
+    //  origin. A's triangles near the leaf (worldA_ when faceted, else
+    //  gathered here), or A's tangent plane for a surface without them
+    //  (a sphere). The triangles, not the closest point's plane, also where
+    //  a mesh is smooth: that plane's normal is blended near edges, and a
+    //  flat face's area would lean towards its edges.
+    void clippedAreaOfA
+    (
+        const vec3& c, double s, bool inB,
+        const surfacePoint& a, const surfacePoint& b, bool faceted,
+        vec3& areaA, vec3& momentA
+    )
+    {
+        if (!faceted)
+        {
+            const double r = 0.5*std::sqrt(3.0)*s*(1 + 1e-9);
+            local_.clear();
+            if (A_.facetsNear(pA_.toBody(c), r, local_, 256) && !local_.empty())
+            {
+                worldA_.clear();
+                for (const surfaceFacet& f : local_)
+                {
+                    worldA_.push_back
+                    (
+                        {pA_.toWorld(f.a), pA_.toWorld(f.b), pA_.toWorld(f.c), pA_.vectorToWorld(f.normal)}
+                    );
+                }
+                faceted = true;
+            }
+        }
+        areaA = vec3::Zero();
+        momentA = vec3::Zero();
+        const double tol = 1e-9*s;
+        auto add = [&](leafPolygon& P, const vec3& nu)
+        {
+            P.keepInLeaf(c, s, nu);
+            if (!inB) P.keepBelow(b.normal, b.normal.dot(c) - b.distance, tol);
+            double area;
+            vec3 first;
+            P.integrals(nu, area, first);
+            if (area <= 0) return;
+            areaA += area*nu;
+            momentA += first.cross(nu);
+        };
+        if (faceted)
+        {
+            for (const surfaceFacet& f : worldA_)
+            {
+                leafPolygon P;
+                P.n = 3;
+                P.x[0] = f.a;
+                P.x[1] = f.b;
+                P.x[2] = f.c;
+                // Counter-clockwise about the normal
+                if ((f.b - f.a).cross(f.c - f.a).dot(f.normal) < 0) std::swap(P.x[1], P.x[2]);
+                add(P, f.normal);
+            }
+            return;
+        }
+        // A square in A's tangent plane around the point nearest the
+        // centre, wider than the leaf's ball
+        const vec3& nu = a.normal;
+        const vec3 p0 = c - a.distance*nu;
+        int least = 0;
+        nu.cwiseAbs().minCoeff(&least);
+        const vec3 e1 = nu.cross(vec3::Unit(least)).normalized();
+        const vec3 e2 = nu.cross(e1);
+        leafPolygon P;
+        P.n = 4;
+        P.x[0] = p0 - s*e1 - s*e2;
+        P.x[1] = p0 + s*e1 - s*e2;
+        P.x[2] = p0 + s*e1 + s*e2;
+        P.x[3] = p0 - s*e1 + s*e2;
+        add(P, nu);
+    }
 
     // Work space of the leaves
     std::vector<surfaceFacet> local_, worldA_, worldB_;
@@ -1188,11 +1352,34 @@ contactGeometry virtualMeshOverlap::evaluate
         throw coreError(msg.str());
     }
     std::map<cellIndex, baseCellSum> sums;
+    std::vector<const std::pair<const cellIndex, baseCellSum>*> areaOnly;
     for (auto& e : walk.sums)
     {
         if (e.second.volume > 0)
         {
             sums.emplace(e.first, std::move(e.second));
+        }
+        else if (e.second.areaVector.squaredNorm() > 0)
+        {
+            areaOnly.push_back(&e);
+        }
+    }
+    // A base cell holding A's surface inside B but no volume (the volume
+    // sits across a face of the lattice, or in a sliver no column samples)
+    // gives its area to a neighbour with volume, the first of the 26 in a
+    // fixed order
+    for (const auto* e : areaOnly)
+    {
+        bool given = false;
+        for (int k = 0; k < 27 && !given; ++k)
+        {
+            if (k == 13) continue;
+            const cellIndex n{e->first[0] + k/9 - 1, e->first[1] + (k/3)%3 - 1, e->first[2] + k%3 - 1};
+            const auto it = sums.find(n);
+            if (it == sums.end()) continue;
+            it->second.areaVector += e->second.areaVector;
+            it->second.areaMoment += e->second.areaMoment;
+            given = true;
         }
     }
     g.queries = walk.queries;
