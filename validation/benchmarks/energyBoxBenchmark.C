@@ -21,6 +21,8 @@ Description
 Usage
     energyBoxBenchmark [--steps=n] [--laws=potential,volume] [--stl=file]
                        [--stepsPerContact=n] (default 30) [--octreeOnly]
+                       [--level=n] (default 2)
+                       [--reuseTolerancePotential=x] (demSettings' default)
     --octreeOnly: convex pairs on the octree too (overlapSettings::
     convexExact off), as before the exact convex path
 \*---------------------------------------------------------------------------*/
@@ -31,6 +33,8 @@ Usage
 #include "primitiveMeshes.H"
 #include "pairFilter.H"
 #include "coreError.H"
+
+#include <map>
 #include "potentialContactLaw.H"
 
 #include <cmath>
@@ -67,6 +71,8 @@ int main(int argc, char* argv[])
     std::string laws = "potential,volume";
     double stepsPerContact = 30;
     bool convexExact = true;
+    double reuseTolerancePotential = demSettings().reuseTolerancePotential;
+    int level = 2;
     std::string stl = std::string(__FILE__);
     stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
         + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
@@ -78,6 +84,8 @@ int main(int argc, char* argv[])
         else if (a == "--octreeOnly") convexExact = false;
         else if (a.rfind("--laws=", 0) == 0) laws = a.substr(7);
         else if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
+        else if (a.rfind("--reuseTolerancePotential=", 0) == 0) reuseTolerancePotential = std::atof(a.c_str() + 26);
+        else if (a.rfind("--level=", 0) == 0) level = std::atoi(a.c_str() + 8);
         else
         {
             std::fprintf(stderr, "Unknown argument %s\n", a.c_str());
@@ -100,7 +108,8 @@ int main(int argc, char* argv[])
             contactMaterial rubber{"rubber", 1e6, 0.45, 1.0, 0};
             demSettings s;
             s.contactLaw = law;
-            s.overlap = {d/10, 2};
+            s.overlap = {d/10, level};
+            s.reuseTolerancePotential = reuseTolerancePotential;
             s.stepsPerContact = stepsPerContact;
             s.overlap.convexExact = convexExact;
             s.referenceSpeed = 1;
@@ -130,23 +139,26 @@ int main(int argc, char* argv[])
                 dem.addBody(b);
                 ++placed;
             }
-            // The stored energy of the potential law's contacts, sum of w(V)
+            // The stored energy of the potential law's contacts: w of each
+            // pair's whole overlap volume (all its regions)
             const pairMaterial pm = pairMaterial::of(rubber, rubber);
             auto stored = [&]
             {
                 double W = 0;
                 if (law != "potential") return W;
-                for (const contactRecord& c : dem.contacts())
+                std::map<std::pair<int, int>, double> pairV;
+                for (const contactRecord& c : dem.contacts()) pairV[{c.a, c.b}] += c.region.volume;
+                for (const auto& e : pairV)
                 {
-                    const rigidBody& A = dem.bodies()[c.a];
-                    const rigidBody& B = dem.bodies()[c.b];
+                    const rigidBody& A = dem.bodies()[e.first.first];
+                    const rigidBody& B = dem.bodies()[e.first.second];
                     const bool wall = A.geometry->shapeKind() == shape::kind::halfSpace;
                     const double Ra = A.equivalentRadius(), Rb = B.equivalentRadius();
                     const double Rs = wall ? Rb : Ra*Rb/(Ra + Rb);
                     const double Af = std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
                     W += potentialContactLaw::energy
                     (
-                        c.region.volume, pm.effectiveModulus, Rs, Rs,
+                        e.second, pm.effectiveModulus, Rs, Rs,
                         potentialContactLaw::referenceVolume(Af, Rs)
                     );
                 }

@@ -103,7 +103,7 @@ demSettings readSettings(const dictionary& top)
         s.overlap.h = immersedDEMChecks::positiveOrDefault(*c, "cellSize", 0);
         wordList laws;
         for (const std::string& l : contactLaw::types()) laws.append(word(l));
-        s.contactLaw = immersedDEMChecks::oneOfOrDefault(*c, "law", laws, "volume");
+        s.contactLaw = immersedDEMChecks::oneOfOrDefault(*c, "law", laws, demSettings().contactLaw);
         s.characteristicLength =
             immersedDEMChecks::positiveOrDefault(*c, "characteristicLength", 0);
         wordList normals;

@@ -277,19 +277,26 @@ void Foam::immersedFluidCoupling::sealedFacePressure
         immersedDEMParallel::sumOverProcessors(pxSum);
         immersedDEMParallel::sumOverProcessors(xxSum);
     }
-    // The fit for body i at x (zero when no face of it meets the fluid)
+    // The fit p = pm + G.(r - rm) per body, once (zero when no face of it
+    // meets the fluid)
+    scalarField pMean(nBodies, Zero);
+    vectorField rMean(nBodies, Zero), gradient(nBodies, Zero);
+    for (label i = 0; i < nBodies; ++i)
+    {
+        if (aSum[i] <= 0) continue;
+        pMean[i] = pSum[i]/aSum[i];
+        rMean[i] = xSum[i]/aSum[i];
+        // Covariance of the face positions; regularised so that a
+        // direction the faces do not span (2D) gets no gradient
+        symmTensor C = xxSum[i]/aSum[i] - sqr(rMean[i]);
+        C += 1e-6*tr(C)*symmTensor(I) + symmTensor(I)*VSMALL;
+        gradient[i] = inv(C) & (pxSum[i]/aSum[i] - pMean[i]*rMean[i]);
+    }
     auto pAround = [&](const label i, const point& x) -> scalar
     {
         if (aSum[i] <= 0) return 0;
-        const scalar pm = pSum[i]/aSum[i];
-        const vector rm = xSum[i]/aSum[i];
-        // Covariance of the face positions; regularised so that a
-        // direction the faces do not span (2D) gets no gradient
-        symmTensor C = xxSum[i]/aSum[i] - sqr(rm);
-        C += 1e-6*tr(C)*symmTensor(I) + symmTensor(I)*VSMALL;
-        const vector G = inv(C) & (pxSum[i]/aSum[i] - pm*rm);
         const vector r = x - v(dem.bodies()[i].pose.position());
-        return pm + (G & (r - rm));
+        return pMean[i] + (gradient[i] & (r - rMean[i]));
     };
 
     // (pRef: the pressure the face keeps; pAround between two bodies)
@@ -408,7 +415,7 @@ void Foam::immersedFluidCoupling::fluidLoads
             (
                 b.inertia().sum()/3, Ia, cap*unitInertia
             );
-            noteAddedMass(i, ma/unitMass, Ca, U.time().value(), b.name);
+            noteAddedMass(i, ma/unitMass, Ca, b.name);
         }
         b.fluid = fluidLoad::stabilised
         (
@@ -431,7 +438,6 @@ void Foam::immersedFluidCoupling::noteAddedMass
     const label i,
     const scalar coefficient,
     const scalar Ca,
-    const scalar t,
     const word& name
 )
 {

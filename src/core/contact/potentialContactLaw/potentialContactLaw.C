@@ -60,7 +60,12 @@ contactOutput potentialContactLaw::evaluate(const contactInput& in, contactHisto
     const double c = restitutionCalibration::damping(in.material.restitution, q);
 
     const double V0 = referenceVolume(in.flatFaceArea, in.effectiveRadius);
-    const double wp = dWdV(r.volume, Y, lc, in.effectiveRadius, V0);
+    // w of the pair's whole overlap (Feng's potential of the intersection
+    // volume): its gradient is w'(V) times the sum of the regions' S, and
+    // it stays continuous when a region splits in two or two merge (w of
+    // each region's volume would jump there by w(V1 + V2) - w(V1) - w(V2))
+    const double V = std::max(r.volume, in.pairVolume);
+    const double wp = dWdV(V, Y, lc, in.effectiveRadius, V0);
     out.normalForce = std::max(0.0, wp*Sn + c*std::sqrt(in.effectiveMass*k)*vApproach);
     // The elastic part is w' (S, M); damping scales both (w' -> fn/|S|)
     const double scale = out.normalForce/Sn;

@@ -494,6 +494,7 @@ bool demSolver::applyContacts
 
     const double flatFace =
         std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
+    const double pairVolume = g.volume();
     for (const contactRegion& r : g.regions)
     {
         // The history of the nearest region of the last step, if close
@@ -528,6 +529,7 @@ bool demSolver::applyContacts
         in.effectiveRadius = RHertz;
         in.overlapDepth = depth;
         in.flatFaceArea = flatFace;
+        in.pairVolume = pairVolume;
         in.dt = lastDt_;
         const contactOutput f = law_->evaluate(in, h);
         h.normal = r.normal;
