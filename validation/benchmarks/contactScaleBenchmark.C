@@ -43,7 +43,7 @@ Description
 Usage
     contactScaleBenchmark [N] [--stl=file] [--steps=n] [--reuse-only]
         [--reuse-case=word] [--reuse-tolerance=x] [--reuse-fraction=x]
-        [--compare-laws]
+        [--compare-laws] [--reuse-tolerance-potential=x]
 
     N       bodies of the no-contact lattice (default 27 = 3^3)
     steps   sub-steps with the filter on (default 200; off: steps/10);
@@ -54,7 +54,9 @@ Usage
     reuse-fraction   demSettings::reuseFraction, the first (default 0.02)
     compare-laws     part 4 with reuse on, the volume and potential laws
                      side by side (issue 19: the cost per contact of the
-                     default law against the former default)
+                     potential law against the default, volume)
+    reuse-tolerance-potential  demSettings::reuseTolerancePotential
+                     (default 5e-6)
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -277,6 +279,7 @@ struct reuseCase
 };
 
 double reuseToleranceOption = -1;
+double reuseTolerancePotentialOption = -1;
 double reuseFractionOption = -1;
 std::string reuseCaseOption;
 bool compareLaws = false;
@@ -290,6 +293,7 @@ reuseResult runReuse
     demSettings s;
     if (!law.empty()) s.contactLaw = law;
     if (reuseToleranceOption > 0) s.reuseTolerance = reuseToleranceOption;
+    if (reuseTolerancePotentialOption > 0) s.reuseTolerancePotential = reuseTolerancePotentialOption;
     if (reuseFractionOption > 0) s.reuseFraction = reuseFractionOption;
     s.overlap = c.o;
     s.gravity = c.load;
@@ -403,6 +407,7 @@ int main(int argc, char* argv[])
         if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
         else if (a == "--reuse-only") reuseOnly = true;
         else if (a.rfind("--reuse-tolerance=", 0) == 0) reuseToleranceOption = std::atof(a.c_str() + 18);
+        else if (a.rfind("--reuse-tolerance-potential=", 0) == 0) reuseTolerancePotentialOption = std::atof(a.c_str() + 28);
         else if (a.rfind("--reuse-fraction=", 0) == 0) reuseFractionOption = std::atof(a.c_str() + 17);
         else if (a.rfind("--reuse-case=", 0) == 0) reuseCaseOption = a.substr(13);
         else if (a == "--compare-laws") { compareLaws = true; reuseOnly = true; }
@@ -507,7 +512,7 @@ int main(int argc, char* argv[])
             std::printf("  and the largest volume error of the run with reuse against a full evaluation at the same poses\n");
             if (compareLaws)
             {
-                std::printf("  laws side by side, reuse on: volume against potential (the default)\n");
+                std::printf("  laws side by side, reuse on: volume (the default) against potential\n");
                 std::printf("  %-34s %9s %9s %6s %11s %11s %7s %9s %9s\n",
                     "contact", "dt vol", "dt pot", "steps", "volume [us]", "potent [us]", "pot/vol", "fullV [%]", "fullP [%]");
             }

@@ -23,6 +23,10 @@ Usage
                        [--stepsPerContact=n] (default 30) [--octreeOnly]
                        [--level=n] (default 2)
                        [--reuseTolerancePotential=x] (demSettings' default)
+                       [--check]
+    --check: exit 1 unless the potential law's total energy stays within
+    0.1% of its start at every step and at least half the steps have a
+    contact (the suite's dem.energyBox, 1e4 steps)
     --octreeOnly: convex pairs on the octree too (overlapSettings::
     convexExact off), as before the exact convex path
 \*---------------------------------------------------------------------------*/
@@ -73,6 +77,8 @@ int main(int argc, char* argv[])
     bool convexExact = true;
     double reuseTolerancePotential = demSettings().reuseTolerancePotential;
     int level = 2;
+    bool check = false;
+    bool failed = false;
     std::string stl = std::string(__FILE__);
     stl = stl.substr(0, stl.rfind("validation/benchmarks/"))
         + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
@@ -86,6 +92,7 @@ int main(int argc, char* argv[])
         else if (a.rfind("--stl=", 0) == 0) stl = a.substr(6);
         else if (a.rfind("--reuseTolerancePotential=", 0) == 0) reuseTolerancePotential = std::atof(a.c_str() + 26);
         else if (a.rfind("--level=", 0) == 0) level = std::atoi(a.c_str() + 8);
+        else if (a == "--check") check = true;
         else
         {
             std::fprintf(stderr, "Unknown argument %s\n", a.c_str());
@@ -188,6 +195,14 @@ int main(int argc, char* argv[])
             std::printf("%-10s dt %.3g s, %ld steps (%ld with contact), worst drift %.3e, final %.3e, CPU %.0f s\n",
                 law.c_str(), dt, steps, contactSteps, worst, last, cpuSeconds() - c0);
             std::fflush(stdout);
+            // The potential law's total energy within 0.1% (issue 19), with
+            // contacts at most steps
+            if (check && law == "potential" && (!(worst < 1e-3) || contactSteps < steps/2))
+            {
+                std::printf("FAIL: potential law, worst drift %.3e (limit 1e-3), %ld of %ld steps with contact (at least half)\n",
+                    worst, contactSteps, steps);
+                failed = true;
+            }
         }
     }
     catch (const coreError& e)
@@ -195,5 +210,5 @@ int main(int argc, char* argv[])
         std::fprintf(stderr, "Error: %s\n", e.what());
         return 1;
     }
-    return 0;
+    return failed ? 1 : 0;
 }
