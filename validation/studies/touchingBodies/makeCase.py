@@ -25,6 +25,7 @@ p.add_argument("--h", type=float, default=3.125, help="cell size [mm]")
 p.add_argument("--endTime", default="0.2")
 p.add_argument("--writeInterval", default="0.1")
 p.add_argument("--youngsModulus", default="6.3e10")
+p.add_argument("--restitution", default="", help="the glass's restitution (default: the material default)")
 p.add_argument("--sealedWalls", action="store_true", help="sealedWalls yes in the fvOption")
 p.add_argument("--contact", default="", help="entries of the contact dictionary")
 p.add_argument("--lubrication", default="", help="entries of the lubrication dictionary")
@@ -119,5 +120,5 @@ walls = "walls { tank { type patch; patches (walls); material glass; } }\n" if a
 contact = "contact { %s }\n" % a.contact if a.contact else ""
 contact += "lubrication { %s }\n" % a.lubrication if a.lubrication else ""
 write("constant/immersedDEMProperties", "dictionary", "immersedDEMProperties",
-      "materials { glass { youngsModulus %s; poissonsRatio 0.24; } }\n%sbodies\n{\n%s}\n%s"
-      % (a.youngsModulus, contact, bodies, walls))
+      "materials { glass { youngsModulus %s; poissonsRatio 0.24;%s } }\n%sbodies\n{\n%s}\n%s"
+      % (a.youngsModulus, " restitution %s;" % a.restitution if a.restitution else "", contact, bodies, walls))
