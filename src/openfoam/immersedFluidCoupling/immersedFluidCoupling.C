@@ -225,8 +225,10 @@ void Foam::immersedFluidCoupling::sealedFacePressure
     List<scalar> aSum(nBodies, Zero), pSum(nBodies, Zero);
     List<vector> xSum(nBodies, Zero), pxSum(nBodies, Zero);
     List<symmTensor> xxSum(nBodies, Zero);
+    // The pressure across each coupled patch, once (for the fit and for
+    // the sealed faces)
+    PtrList<scalarField> pNbr(patches.size());
     {
-        PtrList<scalarField> pNbr(patches.size());
         forAll(patches, patchi)
         {
             if (patches[patchi].coupled())
@@ -299,14 +301,9 @@ void Foam::immersedFluidCoupling::sealedFacePressure
         return pMean[i] + (gradient[i] & (r - rMean[i]));
     };
 
-    // (pRef: the pressure the face keeps; pAround between two bodies)
-    auto remove = [&]
-    (
-        const label i, const vector& S, const scalar pf, const point& x,
-        const scalar pRef
-    )
+    auto remove = [&](const label i, const vector& S, const scalar pf, const point& x)
     {
-        const vector dF = (pf - pRef)*S;
+        const vector dF = (pf - pAround(i, x))*S;
         const vector r = x - v(dem.bodies()[i].pose.position());
         penalty[i] += dF;
         penaltyMoment[i] += r ^ dF;
@@ -324,7 +321,7 @@ void Foam::immersedFluidCoupling::sealedFacePressure
                 if (forced[n] < 0 || forced[n] == i) continue;
                 const scalar pf =
                     w[facei]*p[own[facei]] + (1 - w[facei])*p[nei[facei]];
-                remove(i, isOwner ? Sf[facei] : -Sf[facei], pf, Cf[facei], pAround(i, Cf[facei]));
+                remove(i, isOwner ? Sf[facei] : -Sf[facei], pf, Cf[facei]);
                 continue;
             }
             const label patchi = patches.whichPatch(facei);
@@ -337,13 +334,12 @@ void Foam::immersedFluidCoupling::sealedFacePressure
                 const label n = nbrForced[facei - nInternal];
                 if (n < 0 || n == i) continue;
                 const scalar wf = mesh.weights().boundaryField()[patchi][pfi];
-                const scalar pf =
-                    wf*p[celli] + (1 - wf)*pb.patchNeighbourField()()[pfi];
-                remove(i, S, pf, x, pAround(i, x));
+                const scalar pf = wf*p[celli] + (1 - wf)*pNbr[patchi][pfi];
+                remove(i, S, pf, x);
             }
             else if (wallFaces && U.boundaryField()[patchi].fixesValue())
             {
-                remove(i, S, pb[pfi], x, pAround(i, x));
+                remove(i, S, pb[pfi], x);
             }
         }
     }
