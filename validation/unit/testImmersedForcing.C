@@ -86,25 +86,28 @@ TEST(fluidLoad, fieldsListEveryMemberOnce)
     };
     fluidLoad::fields(l, counter{names, nVectors, nScalars});
     EXPECT_EQ(nVectors, 6);
-    EXPECT_EQ(nScalars, 3);
-    EXPECT_EQ(names.size(), 9u);
+    EXPECT_EQ(nScalars, 5);
+    EXPECT_EQ(names.size(), 11u);
     // Every member was reached: none is left at its default
     EXPECT_EQ(l.force.sum() + l.torque.sum() + l.referenceVelocity.sum()
         + l.referenceAcceleration.sum() + l.referenceAngularVelocity.sum()
         + l.referenceAngularAcceleration.sum(), 18);
-    EXPECT_EQ(l.damping + l.referenceTime + l.angularDamping, 3);
-    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 3*sizeof(double));
+    EXPECT_EQ(l.damping + l.addedMass + l.nominalAddedMass + l.referenceTime + l.angularDamping, 5);
+    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 5*sizeof(double));
 }
 
 TEST(fluidLoad, stabilisedFollowsTheExtrapolatedMotion)
 {
     const double deltaT = 1e-3, t = 0.5;
     const vec3 v(0.1, 0, 0), vPrev(0.09, 0, 0), w(0, 1, 0), wPrev(0, 1, 0);
+    // A body in contact: the damper
     const fluidLoad l = fluidLoad::stabilised
     (
-        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.01, deltaT, t, v, vPrev, w, wPrev
+        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.1, false, 0.01, deltaT, t, v, vPrev, w, wPrev
     );
     EXPECT_DOUBLE_EQ(l.damping, 0.2/deltaT);
+    EXPECT_EQ(l.addedMass, 0);
+    EXPECT_EQ(l.nominalAddedMass, 0);
     EXPECT_DOUBLE_EQ(l.angularDamping, 0.01/deltaT);
     // On the extrapolated course: the plain load
     const vec3 vLater = v + 0.5*deltaT*(v - vPrev)/deltaT;
@@ -112,4 +115,17 @@ TEST(fluidLoad, stabilisedFollowsTheExtrapolatedMotion)
     // A departure meets the added mass
     EXPECT_NEAR(l.appliedForce(v + vec3(0.01, 0, 0), t).x(), -0.2/deltaT*0.01, 1e-12);
     EXPECT_NEAR((l.appliedTorque(w, t) - vec3(0, 0, 2)).norm(), 0, 1e-12);
+    EXPECT_NEAR(l.inertialForce().norm(), 0, 1e-15);
+
+    // A body free of contacts: the added mass is inertia, the force plain
+    const fluidLoad f = fluidLoad::stabilised
+    (
+        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.1, true, 0.01, deltaT, t, v, vPrev, w, wPrev
+    );
+    EXPECT_EQ(f.damping, 0);
+    EXPECT_DOUBLE_EQ(f.addedMass, 0.2);
+    EXPECT_DOUBLE_EQ(f.nominalAddedMass, 0.1);
+    EXPECT_NEAR((f.appliedForce(v + vec3(0.01, 0, 0), t) - vec3(0, 0, 1)).norm(), 0, 1e-12);
+    EXPECT_NEAR((f.inertialForce() - 0.2*(v - vPrev)/deltaT).norm(), 0, 1e-12);
+    EXPECT_DOUBLE_EQ(f.angularDamping, 0.01/deltaT);
 }

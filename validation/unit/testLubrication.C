@@ -205,9 +205,11 @@ struct coasting
     double gap() const { return dem.bodies()[ball].pose.position().z() - R; }
     double speed() const { return dem.bodies()[ball].velocity.z(); }
 
+    //- The film slows the ball and its nominal added mass
     double exactSpeed(double h) const
     {
-        const double m = rho*4.0/3.0*M_PI*R*R*R;
+        const double m =
+            rho*4.0/3.0*M_PI*R*R*R + dem.bodies()[ball].fluid.nominalAddedMass;
         return v0 + 6*M_PI*mu*R*R/m*(std::log(cell/h) - (cell - h)/cell);
     }
 };
@@ -239,6 +241,32 @@ TEST(lubrication, sphereCoastingToAWallFollowsTheFilm)
     EXPECT_LT(c.gap(), 0.6*c.cell);
     EXPECT_GT(c.dem.bodies()[c.ball].lubricationForce.z(), -1e-12);
     EXPECT_TRUE(c.dem.contacts().empty());
+}
+
+
+TEST(lubrication, filmSlowsTheBodyWithItsNominalAddedMass)
+{
+    // The coupling's added mass m_a (here 4 m, the forcing's, for
+    // stability) is inertia in the DEM; the film below the mesh slows the
+    // ball as if it carried only its nominal Ca rho V (here 0.5 m)
+    coasting c;
+    rigidBody& b = c.dem.bodies()[c.ball];
+    b.fluid.addedMass = 4*b.mass();
+    b.fluid.nominalAddedMass = 0.5*b.mass();
+    double worst = 0;
+    int checked = 0;
+    for (int i = 0; i < 4000 && c.speed() < 0; ++i)
+    {
+        c.dem.advance(1e-4);
+        if (c.speed() > 0.5*c.v0) continue;
+        worst = std::max(worst, std::abs(c.speed()/c.exactSpeed(c.gap()) - 1));
+        ++checked;
+    }
+    EXPECT_GT(checked, 10);
+    EXPECT_LT(worst, 0.01) << "largest relative speed error";
+    // It stops where the exact stop of m + 0.5 m is (v(h) = 0), not in the
+    // thinner film m + m_a would reach
+    EXPECT_LT(std::abs(c.exactSpeed(c.gap())), 0.05*std::abs(c.v0));
 }
 
 

@@ -57,7 +57,7 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
             measure ? est.stabilisation(m, Ca*rho*V, 100*rho*V) : Ca*rho*V;
         b.fluid = fluidLoad::stabilised
         (
-            F, vec3::Zero(), ma, 0, dt, dem.time(),
+            F, vec3::Zero(), ma, Ca*rho*V, false, 0, dt, dem.time(),
             b.velocity, vPrevious, b.angularVelocity, b.angularVelocity
         );
         vPrevious = b.velocity;
@@ -101,12 +101,13 @@ TEST(measuredAddedMass, measuredAddedMassSettlesWhatTheCoefficientCannot)
             // The fluid's own added mass, measured while the body
             // accelerated from rest; the drag's change (-c dv, dv along
             // the change of acceleration's opposite while the approach is
-            // smooth) pulls the fit down: 4.1 for 7, 16.6 for 30 (an
-            // oscillation, where it matters, is measured exactly: the
-            // next test). Still above the body's mass (2.5 rho V), so the
-            // measured value is the one in use
+            // smooth) pulls the fit down: 17.3 for 30 (an oscillation,
+            // where it matters, is measured exactly: the next test); 7.13
+            // for 7, the value of the last steps whose changes of force
+            // followed the acceleration significantly. Above the body's
+            // mass (2.5 rho V), so the measured value is the one in use
             EXPECT_GT(r.measured, 0.5*kM) << "M = " << kM << " rho V";
-            EXPECT_LT(r.measured, 1.001*kM) << "M = " << kM << " rho V";
+            EXPECT_LT(r.measured, 1.05*kM) << "M = " << kM << " rho V";
         }
     }
 }
@@ -143,6 +144,37 @@ TEST(measuredAddedMass, holdsItsValueWhileTheDataSayNothing)
     EXPECT_EQ(other.value(), 0);
     est.reset();
     EXPECT_EQ(est.value(), 0);
+}
+
+
+TEST(measuredAddedMass, forceNoiseThatDoesNotFollowTheAccelerationMeasuresNothing)
+{
+    // A sphere falling in water at 16 cells per diameter (study
+    // wetBouncing): force noise of +-5e-3 N from cells changing sides,
+    // changes of acceleration of about 1 m/s2 that it does not follow.
+    // The plain fit measured up to 31.7 rho V (rho V = 5.2e-4 kg) from
+    // such data; now nothing is measured
+    measuredAddedMass est;
+    unsigned seed = 12345;
+    auto noise = [&seed]()
+    {
+        seed = seed*1103515245u + 12345u;
+        return double((seed >> 8) % 2001)/1000.0 - 1;    // [-1, 1]
+    };
+    for (int n = 0; n < 300; ++n)
+    {
+        const vec3 a(0, 0, noise());
+        est.record(vec3(0, 0, 0.015 + 5e-3*noise()), a, 1e-4);
+    }
+    EXPECT_EQ(est.value(), 0);
+    // An oscillation of the coupling (the force answers the acceleration,
+    // M = 1e-2 kg) over the same noise: measured
+    for (int n = 0; n < 20; ++n)
+    {
+        const vec3 a(0, 0, n % 2 ? 5.0 : -5.0);
+        est.record(vec3(0, 0, 0.015 + 5e-3*noise()) - 1e-2*a, a, 1e-4);
+    }
+    EXPECT_NEAR(est.value(), 1e-2, 2e-3);
 }
 
 

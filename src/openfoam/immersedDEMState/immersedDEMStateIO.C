@@ -30,7 +30,24 @@ struct fluidLoadReader
 {
     const Foam::dictionary& d;
     void operator()(const char* name, vec3& x) { x = c(d.get<Foam::vector>(name)); }
-    void operator()(const char* name, double& x) { x = d.get<Foam::scalar>(name); }
+    void operator()(const char* name, double& x)
+    {
+        // Restart files written before the added mass became inertia
+        // (they hold fluidDamping instead): m_a from the next CFD step on
+        if
+        (
+            !d.found(name)
+         && (
+                std::string(name) == "fluidAddedMass"
+             || std::string(name) == "fluidNominalAddedMass"
+            )
+        )
+        {
+            x = 0;
+            return;
+        }
+        x = d.get<Foam::scalar>(name);
+    }
 };
 
 } // End anonymous namespace

@@ -362,6 +362,16 @@ void Foam::immersedFluidCoupling::fluidLoads
     List<vector> P, PM, M, L;
     fluidSums(projection, dem, U, deltaT, P, PM, M, L);
     auto& bodies = dem.bodies();
+    // Bodies in contact at the end of the last DEM step (pairs with a
+    // contact history): the damper stabilises them (fluidLoad.H); the
+    // others carry their added mass as inertia, so that an impact within
+    // the next step keeps its rebound
+    List<bool> touching(bodies.size(), false);
+    for (const auto& h : dem.histories())
+    {
+        if (h.first.first < touching.size()) touching[h.first.first] = true;
+        if (h.first.second < touching.size()) touching[h.first.second] = true;
+    }
     forAll(M, i)
     {
         if (dem.isWall(i)) continue;
@@ -415,7 +425,7 @@ void Foam::immersedFluidCoupling::fluidLoads
         }
         b.fluid = fluidLoad::stabilised
         (
-            F, T, ma, Ia, deltaT, dem.time(),
+            F, T, ma, Ca*unitMass, !touching[i], Ia, deltaT, dem.time(),
             b.velocity, c(previousVelocity_[i]),
             b.angularVelocity, c(previousAngularVelocity_[i])
         );

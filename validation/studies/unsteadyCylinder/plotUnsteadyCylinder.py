@@ -2,6 +2,7 @@
 """Table and plot of the unsteadyCylinder study (see Allrun).
 
     plotUnsteadyCylinder.py <work> [-cycles N] [-o DIR]
+    plotUnsteadyCylinder.py -settled <immersed run> <body-fitted run> [-cycles N] [-o DIR]
 
 For every run folder <work>/<series>/<scheme>_<dt>: the figures of the last
 N lift cycles (forceFigures.py), the change when the step is halved, and
@@ -15,9 +16,45 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from forceFigures import history, figures
 
 a = sys.argv[1:]
-work = a[0]
 cycles = int(a[a.index("-cycles") + 1]) if "-cycles" in a else 4
 out = a[a.index("-o") + 1] if "-o" in a else "."
+
+
+def settled(immersed, bodyFitted):
+    """The two settled runs of the README (to t = 120 s): their figures
+    over the last cycles, the difference, and unsteadyCylinderSettled.png"""
+    got = {}
+    for name, d in (("immersed", immersed), ("body-fitted", bodyFitted)):
+        t, Cd, Cl = history(d)
+        got[name] = (figures(t, Cd, Cl, None, cycles), (t, Cd, Cl))
+    keys = ("CdMean", "CdAmp", "ClAmp", "St")
+    for name, (f, _) in got.items():
+        print("%-12s " % name + " ".join("%s %.5g" % (k, f[k]) for k in keys))
+    fi, fb = got["immersed"][0], got["body-fitted"][0]
+    print("immersed/body-fitted - 1: " + " ".join("%s %+.2f%%" % (k, 100*(fi[k]/fb[k] - 1)) for k in keys))
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for name, (f, (t, Cd, Cl)) in got.items():
+        sel = [i for i in range(len(t)) if f["from"] <= t[i] <= f["to"]]
+        tt = [t[i] - f["to"] for i in sel]
+        style = "-" if name == "body-fitted" else "--"
+        ax[0].plot(tt, [Cl[i] for i in sel], style, label=name, lw=1)
+        ax[1].plot(tt, [Cd[i] for i in sel], style, label=name, lw=1)
+    ax[0].set_ylabel("lift coefficient")
+    ax[1].set_ylabel("drag coefficient")
+    ax[1].set_xlabel("t - t(last upward lift crossing) [D/U]")
+    ax[0].legend(fontsize=8)
+    fig.suptitle("fixed 2D cylinder, Re 100, settled (t = 120 D/U): immersed 20 cells/D, body-fitted fine O-grid")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "unsteadyCylinderSettled.png"), dpi=110)
+
+
+if a[0] == "-settled":
+    settled(a[1], a[2])
+    sys.exit(0)
+work = a[0]
 
 runs = {}
 for d in sorted(glob.glob(os.path.join(work, "*", "*_*"))):

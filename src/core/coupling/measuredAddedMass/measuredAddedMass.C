@@ -1,6 +1,7 @@
 #include "measuredAddedMass.H"
 
 #include <algorithm>
+#include <cmath>
 
 namespace immersedDEM
 {
@@ -17,7 +18,26 @@ void measuredAddedMass::record(const vec3& F, const vec3& a, const double floor)
         const vec3 da = a - lastAcceleration_;
         sumFa_ = forget*sumFa_ - dF.dot(da);
         sumaa_ = forget*sumaa_ + da.squaredNorm();
-        if (sumaa_ > floor)
+        // The correlation, over a longer memory, and whether it tells
+        // anything: Fisher's z = atanh(rho) sqrt(n - 3) at least
+        // minSignificance, n the memory's effective number of steps.
+        // Random force noise against random changes of acceleration
+        // reaches rho = 0.7 now and then over a few steps, not over 40
+        corrFa_ = forgetCorrelation*corrFa_ - dF.dot(da);
+        corraa_ = forgetCorrelation*corraa_ + da.squaredNorm();
+        corrFF_ = forgetCorrelation*corrFF_ + dF.squaredNorm();
+        corrW1_ = forgetCorrelation*corrW1_ + 1;
+        corrW2_ = forgetCorrelation*forgetCorrelation*corrW2_ + 1;
+        const double n = corrW1_*corrW1_/corrW2_;
+        const double rho =
+            corrFa_ > 0 && corraa_*corrFF_ > 0
+          ? std::min(corrFa_/std::sqrt(corraa_*corrFF_), 1 - 1e-12)
+          : 0;
+        const bool significant =
+            n > 3 && std::atanh(rho)*std::sqrt(n - 3) >= minSignificance;
+        // Only changes of force that follow the changes of acceleration
+        // tell M
+        if (sumaa_ > floor && significant)
         {
             value_ = std::max(0.0, sumFa_/sumaa_);
         }

@@ -567,14 +567,17 @@ double demSolver::lubricationReach() const
 }
 
 
-double demSolver::inverseMassAlong(const rigidBody& b, const vec3& x, const vec3& n) const
+double demSolver::inverseMassAlong
+(
+    const rigidBody& b, const vec3& x, const vec3& n, double addedMass
+) const
 {
     if (!b.dynamic())
     {
         return 0;
     }
     const vec3 rn = (x - b.pose.position()).cross(n);
-    return 1/b.mass() + rn.dot(b.worldInertia().inverse()*rn);
+    return 1/(b.mass() + addedMass) + rn.dot(b.worldInertia().inverse()*rn);
 }
 
 
@@ -707,9 +710,23 @@ void demSolver::applyFilm
     (
         settings_.lubrication.viscosity, R, gap, hAct, hRough
     );
+    // The bodies move with their added masses m_a (rigidBodyIntegrator):
+    // the film's force is scaled so that it slows the approach as it would
+    // bodies carrying only their nominal added mass Ca rho V (m_a may be
+    // the forcing's larger one, needed for the coupling's stability; the
+    // film is below the mesh)
+    const double invMass =
+        inverseMassAlong(A, x, n, A.fluid.addedMass)
+      + inverseMassAlong(B, x, n, B.fluid.addedMass);
+    const double invNominal =
+        inverseMassAlong(A, x, n, A.fluid.nominalAddedMass)
+      + inverseMassAlong(B, x, n, B.fluid.nominalAddedMass);
+    if (invMass > 0)
+    {
+        coeff *= invNominal/invMass;
+    }
     // The damper removes at most the whole normal approach in one step
     const double dt = lastDt_ > 0 ? lastDt_ : timeStep();
-    const double invMass = inverseMassAlong(A, x, n) + inverseMassAlong(B, x, n);
     if (invMass > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
     {
         coeff = std::min(coeff, 1/(invMass*dt));

@@ -8,6 +8,8 @@ fluidLoad fluidLoad::stabilised
     const vec3& F,
     const vec3& T,
     const double addedMass,
+    const double nominalAddedMass,
+    const bool inertia,
     const double addedInertia,
     const double deltaT,
     const double t,
@@ -19,7 +21,15 @@ fluidLoad fluidLoad::stabilised
 {
     fluidLoad l;
     l.force = F;
-    l.damping = addedMass/deltaT;
+    if (inertia)
+    {
+        l.addedMass = addedMass;
+        l.nominalAddedMass = nominalAddedMass;
+    }
+    else
+    {
+        l.damping = addedMass/deltaT;
+    }
     l.referenceVelocity = v;
     l.referenceAcceleration = (v - vPrevious)/deltaT;
     l.referenceTime = t;

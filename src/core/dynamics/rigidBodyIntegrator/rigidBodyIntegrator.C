@@ -73,7 +73,11 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // Translation
 
-    b.velocity += b.totalForce()*(halfDt/b.mass());
+    // The added mass, where it is inertia (fluidLoad.H); 0 without a
+    // fluid or with the damper
+    const double ma = b.fluid.addedMass;
+    b.velocity +=
+        (b.totalForce() + b.fluid.inertialForce())*(halfDt/(b.mass() + ma));
     for (int k = 0; k < 3; ++k)
     {
         if (b.lockTranslation[k])
