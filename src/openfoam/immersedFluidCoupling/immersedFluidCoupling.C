@@ -351,22 +351,22 @@ void Foam::immersedFluidCoupling::fluidLoads
     const immersedBoundaryProjection& projection,
     demSolver& dem,
     const volVectorField& U,
-    scalar rho,
     scalar deltaT,
-    scalar Ca,
-    bool measure
+    const settings& s
 )
 {
+    const scalar rho = s.rho, Ca = s.Ca;
+    const bool measure = s.measure, impactInertia = s.impactInertia;
     const clockTime timer;
     setInnerMomentum(projection, dem, U);
     List<vector> P, PM, M, L;
     fluidSums(projection, dem, U, deltaT, P, PM, M, L);
     auto& bodies = dem.bodies();
-    // Bodies in contact at the end of the last DEM step (pairs with a
-    // contact history): the damper stabilises them (fluidLoad.H); the
-    // others carry their added mass as inertia, so that an impact within
-    // the next step keeps its rebound
-    List<bool> touching(bodies.size(), false);
+    // With impactInertia, bodies in contact at the end of the last DEM
+    // step (pairs with a contact history) keep the damper (fluidLoad.H);
+    // the others carry their added mass as inertia, so that an impact
+    // within the next step keeps its rebound
+    List<bool> touching(bodies.size(), !impactInertia);
     for (const auto& h : dem.histories())
     {
         if (h.first.first < touching.size()) touching[h.first.first] = true;
@@ -406,7 +406,8 @@ void Foam::immersedFluidCoupling::fluidLoads
         const scalar aFloor = 1e-2;
         addedMass_[i].record
         (
-            F, (b.velocity - c(previousVelocity_[i]))/deltaT, sqr(aFloor)
+            F, (b.velocity - c(previousVelocity_[i]))/deltaT, sqr(aFloor),
+            impactInertia
         );
         addedInertia_[i].record
         (

@@ -6,7 +6,13 @@
 namespace immersedDEM
 {
 
-void measuredAddedMass::record(const vec3& F, const vec3& a, const double floor)
+void measuredAddedMass::record
+(
+    const vec3& F,
+    const vec3& a,
+    const double floor,
+    const bool significantOnly
+)
 {
     if (skip_ > 0)
     {
@@ -37,7 +43,7 @@ void measuredAddedMass::record(const vec3& F, const vec3& a, const double floor)
             n > 3 && std::atanh(rho)*std::sqrt(n - 3) >= minSignificance;
         // Only changes of force that follow the changes of acceleration
         // tell M
-        if (sumaa_ > floor && significant)
+        if (sumaa_ > floor && (significant || !significantOnly))
         {
             value_ = std::max(0.0, sumFa_/sumaa_);
         }

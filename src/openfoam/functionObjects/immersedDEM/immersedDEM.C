@@ -188,7 +188,7 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "maxSubSteps",
+            "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "impactInertia", "maxSubSteps",
             "writeContacts"
         }
     );
@@ -198,6 +198,7 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
+    impactInertia_ = dict.getOrDefault<Switch>("impactInertia", false);
     UName_ = dict.getOrDefault<word>("U", "U");
     setViscosity();
     return true;
@@ -249,7 +250,10 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
-        state_.fluidLoads(*U, rhoInf_, deltaT, Ca_, measureAddedMass_);
+        state_.fluidLoads
+        (
+            *U, deltaT, {rhoInf_, Ca_, measureAddedMass_, impactInertia_}
+        );
     }
     else if (!warnedNoForcing_)
     {
