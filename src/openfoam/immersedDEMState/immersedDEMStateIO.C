@@ -32,8 +32,8 @@ struct fluidLoadReader
     void operator()(const char* name, vec3& x) { x = c(d.get<Foam::vector>(name)); }
     void operator()(const char* name, double& x)
     {
-        // Restart files written before the added mass became inertia
-        // (they hold fluidDamping instead): m_a from the next CFD step on
+        // Restart files written before impactInertia (no added mass as
+        // inertia: the damper, as they were written)
         if
         (
             !d.found(name)

@@ -710,11 +710,12 @@ void demSolver::applyFilm
     (
         settings_.lubrication.viscosity, R, gap, hAct, hRough
     );
-    // The bodies move with their added masses m_a (rigidBodyIntegrator):
-    // the film's force is scaled so that it slows the approach as it would
-    // bodies carrying only their nominal added mass Ca rho V (m_a may be
-    // the forcing's larger one, needed for the coupling's stability; the
-    // film is below the mesh)
+    // Bodies carrying their added mass m_a as inertia (fluidLoad.H;
+    // rigidBodyIntegrator): the film's force is scaled so that it slows
+    // the approach as it would bodies carrying only their nominal added
+    // mass Ca rho V (m_a may be the forcing's larger one, needed for the
+    // coupling's stability; the film is below the mesh). With the damper
+    // both are 0: no scaling
     const double invMass =
         inverseMassAlong(A, x, n, A.fluid.addedMass)
       + inverseMassAlong(B, x, n, B.fluid.addedMass);
