@@ -88,3 +88,88 @@ TEST(boxFraction, insideOutsideAndCounts)
     EXPECT_EQ(boxFraction::of(s, bodyPose(), vec3::Constant(0.02), vec3::Constant(0.021), 2, &q), 0);
     EXPECT_EQ(q, 2);
 }
+
+
+namespace
+{
+
+// Sum of lambda V as the projection computes it: one query at each cell
+// centre, boxFraction::fromQuery
+double projectedVolumeFromQuery(const shape& sh, const bodyPose& pose, double s, long& queries)
+{
+    const axisAlignedBox b = sh.worldBox(pose);
+    double V = 0;
+    for (double x = std::floor(b.min.x()/s)*s; x < b.max.x(); x += s)
+        for (double y = std::floor(b.min.y()/s)*s; y < b.max.y(); y += s)
+            for (double z = std::floor(b.min.z()/s)*s; z < b.max.z(); z += s)
+            {
+                const vec3 lo(x, y, z), hi(x + s, y + s, z + s), c = 0.5*(lo + hi);
+                ++queries;
+                V += s*s*s*boxFraction::fromQuery(sh, pose, lo, hi, c, sh.closest(pose, c), &queries);
+            }
+    return V;
+}
+
+} // End anonymous namespace
+
+
+TEST(boxFraction, creasesOfFacetedBodies)
+{
+    // A cube's twelve edges are creases, its faces' diagonals are not; a
+    // finely tessellated sphere has none; an icosahedron's faces meet at
+    // 41.8 degrees: all thirty edges are creases
+    const triangleMeshShape cube(primitiveMeshes::box(vec3(0.005, 0.005, 0.005)), "cube");
+    EXPECT_EQ(cube.distanceField().nCreases(), 12u);
+    EXPECT_EQ(triangleMeshShape(primitiveMeshes::icosphere(0.005, 3), "ico").distanceField().nCreases(), 0u);
+    EXPECT_EQ(triangleMeshShape(primitiveMeshes::icosphere(0.005, 0), "ico").distanceField().nCreases(), 30u);
+    // Near an edge, not at a face's centre (body frame: centred)
+    EXPECT_TRUE(cube.creaseWithin(vec3(0.0051, 0.0049, 0), 0.0003));
+    EXPECT_FALSE(cube.creaseWithin(vec3(0.0051, 0.0045, 0), 0.0003));
+    EXPECT_FALSE(cube.creaseWithin(vec3(0, 0, 0.005), 0.004));
+    EXPECT_TRUE(cube.creaseWithin(vec3(0, 0, 0.005), 0.0051));
+    EXPECT_FALSE(sphereShape(0.005).creaseWithin(vec3(0.005, 0, 0), 1));
+}
+
+
+TEST(boxFraction, oneQueryPerCellOnSmoothAndFacetedBodies)
+{
+    // The projection's lambda from one query per cell: second order on
+    // smooth bodies (more accurate than eight tangent planes), as the
+    // eight planes near the edges of faceted ones, exact on planes
+    const double h = 0.01/8;
+    const sphereShape sphere(0.005);
+    const triangleMeshShape ico(primitiveMeshes::icosphere(0.005, 3), "ico");
+    const triangleMeshShape cube(primitiveMeshes::box(vec3(0.005, 0.005, 0.005)), "cube");
+    const bodyPose turned(vec3(0.0003, -0.0002, 0.0001), quat(Eigen::AngleAxisd(0.7, vec3(1, 2, 3).normalized())));
+    for (const shape* s : {static_cast<const shape*>(&sphere), static_cast<const shape*>(&ico)})
+    {
+        long q = 0;
+        const double e = std::abs(projectedVolumeFromQuery(*s, turned, h, q)/s->volume() - 1);
+        const double e1 = std::abs(projectedVolume(*s, turned, h, 1)/s->volume() - 1);
+        EXPECT_LT(e, 0.001);
+        EXPECT_LT(e, 0.25*e1);
+    }
+    long q = 0, cells = 0;
+    const axisAlignedBox b = cube.worldBox(turned);
+    cells = long(std::ceil((b.max - b.min).x()/h + 1)*std::ceil((b.max - b.min).y()/h + 1)*std::ceil((b.max - b.min).z()/h + 1));
+    const double e = projectedVolumeFromQuery(cube, turned, h, q)/cube.volume() - 1;
+    const double e1 = projectedVolume(cube, turned, h, 1)/cube.volume() - 1;
+    EXPECT_NEAR(e, e1, 0.1*std::abs(e1));
+    EXPECT_LT(std::abs(e), 0.006);
+    // Eight more queries only for cells near the edges
+    EXPECT_LT(q, 2*cells);
+
+    // A tilted plane: exact
+    const halfSpaceShape plane;
+    const bodyPose p = halfSpaceShape::poseOf(vec3::Constant(0.0005), vec3(0.3, -0.5, 0.8));
+    const double s = 1e-4;
+    double V = 0;
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j)
+            for (int k = 0; k < 10; ++k)
+            {
+                const vec3 lo = s*vec3(i, j, k), hi = lo + vec3::Constant(s), c = 0.5*(lo + hi);
+                V += s*s*s*boxFraction::fromQuery(plane, p, lo, hi, c, plane.closest(p, c));
+            }
+    EXPECT_NEAR(V/1e-9, 0.5, 1e-12);
+}

@@ -312,13 +312,28 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
             }
         }
     }
-    // Both parts are sorted: merge them
+    // Both parts are sorted: merge them. With the pair filter on, a pair
+    // whose bounding spheres are farther apart than both the engine's and
+    // the lubrication's reach is one both filters would reject first
+    // (pairFilter's test 1): dropped here, unless a contact of it is
+    // being carried (reuse_ asks no filter)
+    const double dropBeyond = settings_.rejectSeparated
+        ? std::max(pairFilter::engineReach(engine_->type(), settings_.overlap), 2*margin)
+        : std::numeric_limits<double>::infinity();
     const size_t nWallPairs = pairs.size();
     for (const auto& p : neighbours_)
     {
         const int i = p.first, j = p.second;
         if (!moves(i) && !moves(j)) continue;
         if (!box[i].overlaps(box[j])) continue;
+        const double spheres =
+            (bodies_[i].pose.position() - bodies_[j].pose.position()).norm()
+          - bodies_[i].geometry->boundingRadius() - bodies_[j].geometry->boundingRadius();
+        if (spheres > dropBeyond && reuse_.find(p) == reuse_.end())
+        {
+            ++counters_.droppedBySpheres;
+            continue;
+        }
         pairs.push_back(p);
     }
     std::inplace_merge(pairs.begin(), pairs.begin() + nWallPairs, pairs.end());
@@ -617,6 +632,9 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
     {
         filmRecord& f = carried->second;
         ++f.count;
+        // The filter's record lives on as near: when the film is measured
+        // again, no new proof (a body near a wall mesh: milliseconds)
+        lubricationFilter_.stillTouching(ia, ib);
         const vec3 pa = A.pose.toWorld(f.pointA);
         const vec3 pb = B.pose.toWorld(f.pointB);
         const vec3 n = A.pose.vectorToWorld(f.normal);

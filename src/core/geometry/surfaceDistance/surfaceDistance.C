@@ -1,6 +1,8 @@
 #include "surfaceDistance.H"
 
 #include <cmath>
+#include <algorithm>
+#include <limits>
 #include <unordered_map>
 
 namespace immersedDEM
@@ -28,6 +30,12 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
     vertexNormal_.assign(s.points.size(), vec3::Zero());
     std::unordered_map<std::uint64_t, vec3> edgeSum;
     edgeSum.reserve(3*nF);
+    // Each edge's faces' normals (the first, and whether any other meets
+    // it at more than the crease angle) and how many faces it has
+    struct edgeFaces { vec3 first; int count = 0; bool crease = false; };
+    std::unordered_map<std::uint64_t, edgeFaces> edgeOf;
+    edgeOf.reserve(3*nF);
+    const double cosCrease = std::cos(creaseAngleDegrees*M_PI/180);
     std::vector<std::array<double, 3>> cornerAngle(nF);
     for (size_t fi = 0; fi < nF; ++fi)
     {
@@ -45,7 +53,36 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
             vertexNormal_[f[k]] += angle*n;
             // Not operator[]: it would leave a new (Eigen) vec3 uninitialised
             edgeSum.emplace(edgeKey(f[k], f[(k + 1) % 3]), vec3::Zero()).first->second += n;
+            edgeFaces& e = edgeOf[edgeKey(f[k], f[(k + 1) % 3])];
+            if (e.count == 0) e.first = n;
+            else if (e.first.dot(n) < cosCrease) e.crease = true;
+            ++e.count;
         }
+    }
+    for (const auto& e : edgeOf)
+    {
+        if (e.second.crease || e.second.count != 2)
+        {
+            const int a = int(e.first >> 32), b = int(e.first & 0xffffffffu);
+            creases_.push_back({s.points[a], s.points[b]});
+        }
+    }
+    // A fixed order (the map's is not): by the edges' corners
+    std::sort
+    (
+        creases_.begin(), creases_.end(),
+        [](const std::array<vec3, 2>& x, const std::array<vec3, 2>& y)
+        {
+            for (int i = 0; i < 2; ++i)
+                for (int d = 0; d < 3; ++d)
+                    if (x[i][d] != y[i][d]) return x[i][d] < y[i][d];
+            return false;
+        }
+    );
+    if (!creases_.empty())
+    {
+        creaseNodes_.reserve(creases_.size());
+        buildCreases(0, int(creases_.size()));
     }
     for (vec3& n : vertexNormal_) n.normalize();
     for (size_t fi = 0; fi < nF; ++fi)
@@ -57,6 +94,79 @@ surfaceDistance::surfaceDistance(const triangleSoup& s)
         }
     }
     computeCurvature(s, cornerAngle);
+}
+
+
+int surfaceDistance::buildCreases(int begin, int end)
+{
+    const int index = int(creaseNodes_.size());
+    creaseNodes_.push_back({});
+    vec3 lo = vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
+    for (int i = begin; i < end; ++i)
+    {
+        for (const vec3& x : creases_[i])
+        {
+            lo = lo.cwiseMin(x);
+            hi = hi.cwiseMax(x);
+        }
+    }
+    creaseNodes_[index].lo = lo;
+    creaseNodes_[index].hi = hi;
+    if (end - begin <= 4)
+    {
+        creaseNodes_[index].first = begin;
+        creaseNodes_[index].right = -1;
+        creaseNodes_[index].count = end - begin;
+        return index;
+    }
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int mid = (begin + end)/2;
+    std::nth_element
+    (
+        creases_.begin() + begin, creases_.begin() + mid, creases_.begin() + end,
+        [axis](const std::array<vec3, 2>& x, const std::array<vec3, 2>& y)
+        {
+            return x[0][axis] + x[1][axis] < y[0][axis] + y[1][axis];
+        }
+    );
+    const int left = buildCreases(begin, mid);
+    const int right = buildCreases(mid, end);
+    creaseNodes_[index].first = left;
+    creaseNodes_[index].right = right;
+    creaseNodes_[index].count = 0;
+    return index;
+}
+
+
+bool surfaceDistance::creaseWithin(const vec3& p, double r) const
+{
+    if (creaseNodes_.empty()) return false;
+    const double r2 = r*r;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top)
+    {
+        const creaseNode& nd = creaseNodes_[stack[--top]];
+        const vec3 d = (nd.lo - p).cwiseMax(p - nd.hi).cwiseMax(0.0);
+        if (d.squaredNorm() > r2) continue;
+        if (nd.count)
+        {
+            for (int i = nd.first; i < nd.first + nd.count; ++i)
+            {
+                const vec3& a = creases_[i][0];
+                const vec3 ab = creases_[i][1] - a;
+                const double L2 = ab.squaredNorm();
+                const double t = L2 > 0 ? std::min(1.0, std::max(0.0, (p - a).dot(ab)/L2)) : 0;
+                if ((a + t*ab - p).squaredNorm() <= r2) return true;
+            }
+            continue;
+        }
+        stack[top++] = nd.first;
+        stack[top++] = nd.right;
+    }
+    return false;
 }
 
 
