@@ -15,16 +15,27 @@ using namespace immersedDEM;
 namespace
 {
 
-// Sum of lambda V over a regular grid of cell size s covering the body
-double projectedVolume(const shape& sh, const bodyPose& pose, double s, int levels)
+// Sum of fraction(lo, hi) V over a regular grid of cell size s covering
+// the body
+template<class Fraction>
+double sumOverGrid(const shape& sh, const bodyPose& pose, double s, Fraction fraction)
 {
     const axisAlignedBox b = sh.worldBox(pose);
     double V = 0;
     for (double x = std::floor(b.min.x()/s)*s; x < b.max.x(); x += s)
         for (double y = std::floor(b.min.y()/s)*s; y < b.max.y(); y += s)
             for (double z = std::floor(b.min.z()/s)*s; z < b.max.z(); z += s)
-                V += s*s*s*boxFraction::of(sh, pose, vec3(x, y, z), vec3(x + s, y + s, z + s), levels);
+                V += s*s*s*fraction(vec3(x, y, z), vec3(x + s, y + s, z + s));
     return V;
+}
+
+// Sum of lambda V over a regular grid of cell size s covering the body
+double projectedVolume(const shape& sh, const bodyPose& pose, double s, int levels)
+{
+    return sumOverGrid(sh, pose, s, [&](const vec3& lo, const vec3& hi)
+    {
+        return boxFraction::of(sh, pose, lo, hi, levels);
+    });
 }
 
 } // End anonymous namespace
@@ -97,17 +108,12 @@ namespace
 // centre, boxFraction::fromQuery
 double projectedVolumeFromQuery(const shape& sh, const bodyPose& pose, double s, long& queries)
 {
-    const axisAlignedBox b = sh.worldBox(pose);
-    double V = 0;
-    for (double x = std::floor(b.min.x()/s)*s; x < b.max.x(); x += s)
-        for (double y = std::floor(b.min.y()/s)*s; y < b.max.y(); y += s)
-            for (double z = std::floor(b.min.z()/s)*s; z < b.max.z(); z += s)
-            {
-                const vec3 lo(x, y, z), hi(x + s, y + s, z + s), c = 0.5*(lo + hi);
-                ++queries;
-                V += s*s*s*boxFraction::fromQuery(sh, pose, lo, hi, c, sh.closest(pose, c), &queries);
-            }
-    return V;
+    return sumOverGrid(sh, pose, s, [&](const vec3& lo, const vec3& hi)
+    {
+        const vec3 c = 0.5*(lo + hi);
+        ++queries;
+        return boxFraction::fromQuery(sh, pose, lo, hi, c, sh.closest(pose, c), &queries);
+    });
 }
 
 } // End anonymous namespace

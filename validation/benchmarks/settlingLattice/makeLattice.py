@@ -11,10 +11,12 @@ The lattice spacing keeps every pair apart (no contact), as in the issue's
   makeLattice.py <case> --lattice "4 4 8" [--cellsPerBody 8] [--steps 5]
                  [--seed 1] [--np 2]
 """
-import argparse, math, os, random, shutil, struct
+import argparse, math, os, random, shutil, struct, sys
 
 here = os.path.dirname(os.path.abspath(__file__))
 project = os.path.abspath(os.path.join(here, "..", "..", ".."))
+sys.path.insert(0, os.path.join(project, "validation", "studies", "touchingBodies"))
+import tankCase
 star = os.path.join(project, "caseTemplates", "arbitraryBodiesCollision",
                     "constant", "triSurface", "lumpyStar.stl")
 
@@ -44,36 +46,9 @@ n = [nx, ny, nz]
 size = [k*spacing for k in n]
 cells = [round(s/h) for s in size]
 
-for s in ("0", "constant/triSurface", "system"):
-    os.makedirs(os.path.join(a.case, s), exist_ok=True)
+write = tankCase.writer(a.case)
 shutil.copy(star, os.path.join(a.case, "constant", "triSurface", "lumpyStar.stl"))
-
-def write(path, cls, obj, body):
-    with open(os.path.join(a.case, path), "w") as f:
-        f.write("FoamFile { version 2.0; format ascii; class %s; object %s; }\n\n%s"
-                % (cls, obj, body))
-
-write("0/U", "volVectorField", "U", "dimensions [0 1 -1 0 0 0 0];\n"
-      "internalField uniform (0 0 0);\nboundaryField { walls { type noSlip; } }\n")
-write("0/p", "volScalarField", "p", "dimensions [0 2 -2 0 0 0 0];\n"
-      "internalField uniform 0;\nboundaryField { walls { type zeroGradient; } }\n")
-write("constant/g", "uniformDimensionedVectorField", "g",
-      "dimensions [0 1 -2 0 0 0 0];\nvalue (0 0 -9.81);\n")
-write("constant/transportProperties", "dictionary", "transportProperties",
-      "transportModel Newtonian;\nnu 1e-06;\n")
-write("constant/turbulenceProperties", "dictionary", "turbulenceProperties",
-      "simulationType laminar;\n")
-write("constant/fvOptions", "dictionary", "fvOptions",
-      "bodies { type immersedBoundaryForce; fields (U); }\n")
-lo = [0.0, 0.0, 0.0]
-corners = [(lo[0], lo[1], lo[2]), (size[0], lo[1], lo[2]), (size[0], size[1], lo[2]),
-           (lo[0], size[1], lo[2]), (lo[0], lo[1], size[2]), (size[0], lo[1], size[2]),
-           (size[0], size[1], size[2]), (lo[0], size[1], size[2])]
-write("system/blockMeshDict", "dictionary", "blockMeshDict",
-      "scale 1;\nvertices (" + " ".join("(%.9g %.9g %.9g)" % c for c in corners) + ");\n"
-      "blocks ( hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1) );\n" % tuple(cells) +
-      "boundary ( walls { type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)"
-      " (0 3 2 1) (4 5 6 7) ); } );\n")
+tankCase.writeTank(write, [0.0, 0.0, 0.0], size, cells, 1, "1e-06")
 write("system/controlDict", "dictionary", "controlDict", """application pimpleFoam;
 libs ("libimmersedDEM.so");
 startFrom startTime; startTime 0; stopAt endTime; endTime %g;
@@ -83,21 +58,7 @@ writeFormat binary; writePrecision 10; writeCompression off;
 timeFormat general; timePrecision 8; runTimeModifiable false;
 functions { bodies { type immersedDEM; rhoInf 1000; } }
 """ % (a.steps*0.001))
-write("system/fvSchemes", "dictionary", "fvSchemes", """ddtSchemes { default backward; }
-gradSchemes { default Gauss linear; }
-divSchemes { default none; div(phi,U) Gauss linear; div((nuEff*dev2(T(grad(U))))) Gauss linear; }
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-""")
-write("system/fvSolution", "dictionary", "fvSolution", """solvers
-{
-    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol 0.01; }
-    pFinal { $p; relTol 0; }
-    "(U|UFinal)" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }
-}
-PIMPLE { momentumPredictor yes; nOuterCorrectors 1; nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }
-""")
+tankCase.writeSolver(write)
 write("system/decomposeParDict", "dictionary", "decomposeParDict",
       "numberOfSubdomains %d;\nmethod simple;\n"
       "simpleCoeffs { n (1 1 %d); delta 0.001; }\n" % (a.np, a.np))

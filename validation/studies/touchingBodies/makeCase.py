@@ -14,7 +14,9 @@ CFD step (no maxCo control).
               [--lo "x y z"] [--hi "x y z"] [--h 3.125] [--endTime 0.2]
               [--youngsModulus 6.3e10] [--contact "level 2;"] [--sealedWalls]
 """
-import argparse, os
+import argparse, os, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tankCase
 p = argparse.ArgumentParser()
 p.add_argument("case")
 p.add_argument("--body", action="append", default=[])
@@ -35,34 +37,8 @@ a = p.parse_args()
 lo = [float(x) for x in a.lo.split()]
 hi = [float(x) for x in a.hi.split()]
 n = [round((h - l)/a.h) for l, h in zip(lo, hi)]
-for s in ("0", "constant/triSurface", "system"):
-    os.makedirs(os.path.join(a.case, s), exist_ok=True)
-
-def write(path, cls, obj, body):
-    with open(os.path.join(a.case, path), "w") as f:
-        f.write("FoamFile { version 2.0; format ascii; class %s; object %s; }\n\n%s"
-                % (cls, obj, body))
-
-write("0/U", "volVectorField", "U", "dimensions [0 1 -1 0 0 0 0];\n"
-      "internalField uniform (0 0 0);\nboundaryField { walls { type noSlip; } }\n")
-write("0/p", "volScalarField", "p", "dimensions [0 2 -2 0 0 0 0];\n"
-      "internalField uniform 0;\nboundaryField { walls { type zeroGradient; } }\n")
-write("constant/g", "uniformDimensionedVectorField", "g",
-      "dimensions [0 1 -2 0 0 0 0];\nvalue (0 0 -9.81);\n")
-write("constant/transportProperties", "dictionary", "transportProperties",
-      "transportModel Newtonian;\nnu %s;\n" % a.nu)
-write("constant/turbulenceProperties", "dictionary", "turbulenceProperties",
-      "simulationType laminar;\n")
-write("constant/fvOptions", "dictionary", "fvOptions",
-      "bodies { type immersedBoundaryForce; fields (U);%s }\n"
-      % (" sealedWalls yes;" if a.sealedWalls else ""))
-corners = [(lo[0], lo[1], lo[2]), (hi[0], lo[1], lo[2]), (hi[0], hi[1], lo[2]), (lo[0], hi[1], lo[2]),
-           (lo[0], lo[1], hi[2]), (hi[0], lo[1], hi[2]), (hi[0], hi[1], hi[2]), (lo[0], hi[1], hi[2])]
-write("system/blockMeshDict", "dictionary", "blockMeshDict",
-      "scale 0.001;\nvertices (" + " ".join("(%g %g %g)" % c for c in corners) + ");\n"
-      "blocks ( hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1) );\n" % tuple(n) +
-      "boundary ( walls { type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)"
-      " (0 3 2 1) (4 5 6 7) ); } );\n")
+write = tankCase.writer(a.case)
+tankCase.writeTank(write, lo, hi, n, 0.001, a.nu, " sealedWalls yes;" if a.sealedWalls else "")
 write("system/controlDict", "dictionary", "controlDict", """application pimpleFoam;
 libs ("libimmersedDEM.so");
 startFrom latestTime; startTime 0; stopAt endTime; endTime %s;
@@ -75,21 +51,7 @@ functions { bodies { type immersedDEM; rhoInf 1000; } }
        "deltaT %s; adjustTimeStep no;" % a.deltaT if a.deltaT
        else "deltaT 0.0005; adjustTimeStep yes; maxCo 0.5; maxDeltaT 0.005;",
        a.writeInterval))
-write("system/fvSchemes", "dictionary", "fvSchemes", """ddtSchemes { default backward; }
-gradSchemes { default Gauss linear; }
-divSchemes { default none; div(phi,U) Gauss linear; div((nuEff*dev2(T(grad(U))))) Gauss linear; }
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes { default corrected; }
-""")
-write("system/fvSolution", "dictionary", "fvSolution", """solvers
-{
-    p { solver GAMG; smoother GaussSeidel; tolerance 1e-7; relTol 0.01; }
-    pFinal { $p; relTol 0; }
-    "(U|UFinal)" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }
-}
-PIMPLE { momentumPredictor yes; nOuterCorrectors 1; nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }
-""")
+tankCase.writeSolver(write)
 # A 10 mm cube centred on the origin, outward normals [m]
 e = 0.005
 vtx = [(x, y, z) for x in (-e, e) for y in (-e, e) for z in (-e, e)]
