@@ -7,22 +7,12 @@
 #include "halfSpaceShape.H"
 #include "primitiveMeshes.H"
 
+#include "testHelpers.H"
+
 #include <gtest/gtest.h>
 
 using namespace immersedDEM;
-
-namespace
-{
-contactMaterial material(const std::string& name, double Y)
-{
-    contactMaterial m;
-    m.name = name;
-    m.youngsModulus = Y;
-    m.poissonsRatio = 0.3;
-    m.restitution = 0.8;
-    return m;
-}
-}
+using immersedDEM::test::material;
 
 
 TEST(timeStepExplanation, givesTheSolversStepAndItsCause)

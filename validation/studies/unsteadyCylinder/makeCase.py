@@ -178,6 +178,41 @@ boundaryField
           "turbulenceProperties", "\nsimulationType  laminar;\n")
 
 
+def immersedCylinder(d, slab, position, surface="", density="", motion=""):
+    """The cylinder as an immersed glass body: constant/fvOptions,
+    constant/immersedDEMProperties (extra lines for the fvOption and the
+    body) and its STL prism, three slabs long, through the one-cell slab"""
+    write(os.path.join(d, "constant/fvOptions"), "dictionary", "fvOptions", """
+bodies
+{
+    type        immersedBoundaryForce;
+    fields      (U);
+%s}
+""" % surface)
+    write(os.path.join(d, "constant/immersedDEMProperties"), "dictionary",
+          "immersedDEMProperties", """
+materials
+{
+    glass   { youngsModulus 6.3e10; poissonsRatio 0.24; }
+}
+bodies
+{
+    cylinder
+    {
+        shape       triangleMesh;
+        file        cylinder.stl;
+        material    glass;
+%s        position    %s;
+%s    }
+}
+""" % (density, position, motion))
+    here = os.path.dirname(os.path.abspath(__file__))
+    stl = os.path.join(here, "../../cases/settling2D/cylinderSTL.py")
+    os.makedirs(os.path.join(d, "constant/triSurface"), exist_ok=True)
+    subprocess.check_call([sys.executable, stl, os.path.join(d, "constant/triSurface/cylinder.stl"),
+                           str(-slab), str(2*slab)])
+
+
 def immersedMesh(a):
     h = D/a.n
     hFar = a.hFar*D
@@ -364,38 +399,8 @@ def main():
         write(os.path.join(d, "system/controlDict"), "dictionary", "controlDict",
               controlDict(a, '"libimmersedDEM.so"', fo))
         fields(d, False)
-        write(os.path.join(d, "constant/fvOptions"), "dictionary", "fvOptions", """
-bodies
-{
-    type        immersedBoundaryForce;
-    fields      (U);
-    surface     %s;
-}
-""" % a.surface)
-        write(os.path.join(d, "constant/immersedDEMProperties"), "dictionary",
-              "immersedDEMProperties", """
-materials
-{
-    glass   { youngsModulus 6.3e10; poissonsRatio 0.24; }
-}
-bodies
-{
-    cylinder
-    {
-        shape       triangleMesh;
-        file        cylinder.stl;
-        material    glass;
-        density     1500;
-        position    (0 0 %g);
-        motion      fixed;
-    }
-}
-""" % (a.slab/2))
-        here = os.path.dirname(os.path.abspath(__file__))
-        stl = os.path.join(here, "../../cases/settling2D/cylinderSTL.py")
-        os.makedirs(os.path.join(d, "constant/triSurface"), exist_ok=True)
-        subprocess.check_call([sys.executable, stl, os.path.join(d, "constant/triSurface/cylinder.stl"),
-                               str(-a.slab), str(2*a.slab)])
+        immersedCylinder(d, a.slab, "(0 0 %g)" % (a.slab/2), "    surface     %s;\n" % a.surface,
+                         "        density     1500;\n", "        motion      fixed;\n")
     write(os.path.join(d, "system/blockMeshDict"), "dictionary", "blockMeshDict", mesh)
     write(os.path.join(d, "system/fvSchemes"), "dictionary", "fvSchemes", fvSchemes(a))
     write(os.path.join(d, "system/fvSolution"), "dictionary", "fvSolution", fvSolution(a))

@@ -980,17 +980,58 @@ void demSolver::updateExternalLoads(double t)
 }
 
 
+double demSolver::contactTimeOf(int i, int k, double f, double v) const
+{
+    const rigidBody& b = bodies_[i];
+    const double m = b.mass();
+    const double R = b.equivalentRadius();
+    const pairMaterial& pm = pairMaterialOf(b.material, k);
+    const double Reff = f*R;
+    const double lc =
+        settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
+    double tc = law_->contactTime(pm, f*m, Reff, lc, v);
+
+    // A mesh may touch with a flat face: a linear spring of stiffness
+    // Y* A/l_c over its cross-section A ~ pi R^2, whose half period does
+    // not depend on the speed
+    if (!shapeAs<sphereShape>(*b.geometry))
+    {
+        const double kf = law_->faceStiffness(pm, M_PI*R*R, Reff, lc);
+        tc = std::min(tc, M_PI*std::sqrt(f*m/kf));
+    }
+    return tc;
+}
+
+
+namespace
+{
+    // The largest speed of any body, and the smallest volume-equivalent
+    // diameter of a body that is not a wall
+    void speedAndSize
+    (
+        const std::vector<rigidBody>& bodies, const std::vector<char>& isWall,
+        double& vMax, double& dMin
+    )
+    {
+        vMax = 0;
+        dMin = std::numeric_limits<double>::max();
+        for (size_t i = 0; i < bodies.size(); ++i)
+        {
+            vMax = std::max(vMax, bodies[i].velocity.norm());
+            if (!isWall[i]) dMin = std::min(dMin, 2*bodies[i].equivalentRadius());
+        }
+    }
+}
+
+
 double demSolver::timeStep() const
 {
     if (settings_.deltaT > 0)
     {
         return settings_.deltaT;
     }
-    double vMax = 0;
-    for (size_t i = 0; i < bodies_.size(); ++i)
-    {
-        vMax = std::max(vMax, bodies_[i].velocity.norm());
-    }
+    double vMax, dMin;
+    speedAndSize(bodies_, isWall_, vMax, dMin);
     const double v = std::max(settings_.referenceSpeed, 2*vMax);
 
     // Materials present
@@ -1000,30 +1041,14 @@ double demSolver::timeStep() const
     double tc = std::numeric_limits<double>::max();
     for (size_t i = 0; i < bodies_.size(); ++i)
     {
-        const rigidBody& b = bodies_[i];
-        if (!b.dynamic()) continue;
-        const double m = b.mass();
-        const double R = b.equivalentRadius();
+        if (!bodies_[i].dynamic()) continue;
         for (size_t k = 0; k < materials_.size(); ++k)
         {
             if (!present[k]) continue;
-            const pairMaterial& pm = pairMaterialOf(b.material, int(k));
             // Against a like body (m*/2, R/2), and against a wall (m, R)
             for (const double f : {0.5, 1.0})
             {
-                const double Reff = f*R;
-                const double lc =
-                    settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
-                tc = std::min(tc, law_->contactTime(pm, f*m, Reff, lc, v));
-
-                // A mesh may touch with a flat face: a linear spring of
-                // stiffness Y* A/l_c over its cross-section A ~ pi R^2,
-                // whose half period does not depend on the speed
-                if (!shapeAs<sphereShape>(*b.geometry))
-                {
-                    const double k = law_->faceStiffness(pm, M_PI*R*R, Reff, lc);
-                    tc = std::min(tc, M_PI*std::sqrt(f*m/k));
-                }
+                tc = std::min(tc, contactTimeOf(int(i), int(k), f, v));
             }
         }
     }
@@ -1035,17 +1060,144 @@ double demSolver::timeStep() const
     // relative to another in a step, whatever the contact law says: the
     // fastest relative approach (at most 2 max|v|) cannot carry a body
     // through a wall or another body between two contact evaluations
-    double dMin = std::numeric_limits<double>::max();
-    for (size_t i = 0; i < bodies_.size(); ++i)
-    {
-        if (!isWall_[i]) dMin = std::min(dMin, 2*bodies_[i].equivalentRadius());
-    }
     double dt = tc/settings_.stepsPerContact;
     if (vMax > 0 && dMin < std::numeric_limits<double>::max())
     {
         dt = std::min(dt, maxTravel*dMin/(2*vMax));
     }
     return dt;
+}
+
+
+demSolver::stepChoice demSolver::stepFor(double T) const
+{
+    stepChoice c;
+    if (settings_.deltaT > 0)
+    {
+        c.deltaT = settings_.deltaT;
+        c.userStep = true;
+        return c;
+    }
+    const int n = int(bodies_.size());
+    double vMax, dMin;
+    speedAndSize(bodies_, isWall_, vMax, dMin);
+    const double v = std::max(settings_.referenceSpeed, 2*vMax);
+
+    // How far each body can go in T: its speed now and its acceleration
+    // under the loads and forces now (fluid, weight, contacts, films), the
+    // damper's pull to its reference course included; twice that, for
+    // what a collision within the step may add
+    const double g = settings_.gravity.norm();
+    std::vector<double> travel(n, 0.0);
+    for (int i = 0; i < n; ++i)
+    {
+        const rigidBody& b = bodies_[i];
+        double a = 0;
+        if (b.dynamic())
+        {
+            const double m = b.mass();
+            const fluidLoad& fl = b.fluid;
+            a = g
+              + (
+                    b.appliedFluidForce(time_).norm()
+                  + fl.damping*fl.referenceAcceleration.norm()*T
+                  + b.contactForce.norm() + b.lubricationForce.norm()
+                )/m;
+        }
+        travel[i] = 2*(b.velocity.norm()*T + 0.5*a*T*T);
+    }
+    const double reach = std::max
+    (
+        pairFilter::engineReach(engine_->type(), settings_.overlap),
+        lubricationReach()
+    );
+
+    double tc = std::numeric_limits<double>::max();
+    auto consider = [&](int a, int b)
+    {
+        ++c.pairs;
+        for (const int i : {a, b})
+        {
+            const int j = i == a ? b : a;
+            if (!bodies_[i].dynamic()) continue;
+            const double f = bodies_[j].dynamic() ? 0.5 : 1.0;
+            const double t = contactTimeOf(i, bodies_[j].material, f, v);
+            if (t < tc)
+            {
+                tc = t;
+                c.a = a;
+                c.b = b;
+            }
+        }
+    };
+
+    // Bodies: boxes grown by their travel and half the reach, then their
+    // bounding spheres
+    std::vector<int> others;
+    std::vector<axisAlignedBox> grown(n);
+    for (int i = 0; i < n; ++i)
+    {
+        grown[i] = bodies_[i].geometry->worldBox(bodies_[i].pose)
+            .inflated(travel[i] + 0.5*reach);
+        if (!isWall_[i]) others.push_back(i);
+    }
+    for (const auto& p : gridPairs(grown, others))
+    {
+        const int i = p.first, j = p.second;
+        if (!bodies_[i].dynamic() && !bodies_[j].dynamic()) continue;
+        const double gap =
+            (bodies_[i].pose.position() - bodies_[j].pose.position()).norm()
+          - bodies_[i].geometry->boundingRadius() - bodies_[j].geometry->boundingRadius();
+        if (gap <= travel[i] + travel[j] + reach) consider(i, j);
+    }
+    // Walls: the distance from the body's centre to the wall's surface
+    for (int w = 0; w < n; ++w)
+    {
+        if (!isWall_[w]) continue;
+        for (const int i : others)
+        {
+            if (!bodies_[i].dynamic() || !grown[w].overlaps(grown[i])) continue;
+            const vec3& x = bodies_[i].pose.position();
+            const double gap =
+                std::abs(bodies_[w].geometry->closest(bodies_[w].pose, x).distance)
+              - bodies_[i].geometry->boundingRadius();
+            if (gap <= travel[i] + travel[w] + reach) consider(w, i);
+        }
+    }
+
+    double dt = T;
+    if (tc < std::numeric_limits<double>::max())
+    {
+        dt = tc/settings_.stepsPerContact;
+        if (vMax > 0 && dMin < std::numeric_limits<double>::max())
+        {
+            dt = std::min(dt, maxTravel*dMin/(2*vMax));
+        }
+    }
+    else
+    {
+        // Free flight. The damper relaxes a body to its reference course
+        // over m/c; the step's kicks integrate it to first order (the
+        // second half kick sees the half-step velocity): 1/500 of m/c keeps
+        // its error within 1e-3 of the relaxation. Never shorter than the
+        // softest-case step, though (a measured added mass far above
+        // Ca rho V makes m/c tiny)
+        for (const rigidBody& b : bodies_)
+        {
+            if (!b.dynamic()) continue;
+            if (b.fluid.damping > 0)
+            {
+                dt = std::min(dt, 0.002*b.mass()/b.fluid.damping);
+            }
+            if (b.fluid.angularDamping > 0)
+            {
+                dt = std::min(dt, 0.002*b.inertia().minCoeff()/b.fluid.angularDamping);
+            }
+        }
+        dt = std::max(dt, timeStep());
+    }
+    c.deltaT = std::min(dt, T);
+    return c;
 }
 
 
@@ -1086,7 +1238,8 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     {
         return 0;
     }
-    const double dtMax = timeStep();
+    lastStep_ = stepFor(T);
+    const double dtMax = lastStep_.deltaT;
     const double steps = std::ceil(T/dtMax - 1e-9);
     if (!(dtMax > 0) || !(steps <= maxStepsPerAdvance))
     {
@@ -1124,7 +1277,7 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     for (size_t i = 0; i < bodies_.size(); ++i)
     {
         const rigidBody& b = bodies_[i];
-        if (isWall_[i] || warnedTravel_.count(i)) continue;
+        if (!lastStep_.userStep || isWall_[i] || warnedTravel_.count(i)) continue;
         const double d = 2*b.equivalentRadius();
         if (b.velocity.norm()*dt > maxTravel*d)
         {

@@ -104,4 +104,26 @@ std::string timeStepExplanation::text(const demSolver& dem) const
     return os.str();
 }
 
+std::string timeStepExplanation::lastStep(const demSolver& dem)
+{
+    const demSolver::stepChoice& c = dem.lastStep();
+    std::ostringstream os;
+    os.precision(4);
+    os  << c.deltaT << " s (";
+    if (c.userStep)
+    {
+        os  << "deltaT)";
+    }
+    else if (c.a < 0)
+    {
+        os  << "free flight: no pair can meet)";
+    }
+    else
+    {
+        os  << dem.bodies()[c.a].name << " against " << dem.bodies()[c.b].name
+            << ", " << c.pairs << (c.pairs == 1 ? " pair" : " pairs") << " can meet)";
+    }
+    return os.str();
+}
+
 } // End namespace immersedDEM

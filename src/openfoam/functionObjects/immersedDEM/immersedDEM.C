@@ -5,6 +5,7 @@
 #include "runSummary.H"
 #include "coreError.H"
 #include "clockTime.H"
+#include "timeStepExplanation.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam
@@ -271,7 +272,7 @@ bool Foam::functionObjects::immersedDEM::execute()
     // A DEM step far below the CFD step is a stiff material or a tiny
     // body; past this many sub-steps per CFD step the run would only look
     // hung
-    const scalar demDeltaT = state_.dem().timeStep();
+    const scalar demDeltaT = state_.dem().stepFor(deltaT).deltaT;
     if (deltaT/demDeltaT > maxSubSteps_)
     {
         FatalErrorInFunction
@@ -361,6 +362,7 @@ bool Foam::functionObjects::immersedDEM::execute()
         << " DEM " << demSeconds
         << " forcing " << forcingSeconds
         << " (projected bodies " << state_.projection().lastProjected() << ')'
+        << ", DEM step " << ::immersedDEM::timeStepExplanation::lastStep(state_.dem()).c_str()
         << endl;
 
     if (output_)
