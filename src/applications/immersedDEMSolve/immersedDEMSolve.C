@@ -43,6 +43,7 @@ Usage
 #include "demOutput.H"
 #include "runSummary.H"
 #include "coreError.H"
+#include "timeStepExplanation.H"
 
 #include <algorithm>
 #include <cmath>
@@ -280,7 +281,9 @@ int main(int argc, char *argv[])
             << ", bodies " << (dem->bodies().size() - nWalls(*dem))
             << ", contacts " << dem->contacts().size()
             << ", largest overlap " << largest << " m3"
-            << ", kinetic energy " << dem->kineticEnergy() << " J" << endl;
+            << ", kinetic energy " << dem->kineticEnergy() << " J"
+            << ", DEM step "
+            << immersedDEM::timeStepExplanation::lastStep(*dem).c_str() << endl;
 
         out->writeBodies(runTime.value(), *dem);
         out->writeContacts(runTime.value(), *dem);
