@@ -116,6 +116,27 @@ TEST(stepFor, aWallWithinTheStepsTravel)
 }
 
 
+TEST(stepFor, aTurningWallMovesAtItsSpeedNearTheBody)
+{
+    demSettings s;
+    demSolver dem({material("glass", 6.3e10)}, s);
+    dem.addBody(sphere("a", 0.005, vec3(0, 0, 0.02)));
+    // A floor turning at 1 rad/s about an axis 1 m away: under the sphere
+    // it rises at about 1 m/s, 15 mm below the sphere's surface
+    rigidBody floor = floorAt(0);
+    floor.pose = bodyPose(vec3(1, 0, 0), quat::Identity());
+    floor.motion = motionType::prescribed;
+    floor.angularVelocity = vec3(0, -1, 0);
+    dem.addBody(floor, true);
+    // 5 ms: 5.1 mm, doubled 10.2 mm; 10 ms: 20.4 mm
+    EXPECT_EQ(dem.stepFor(5e-3).a, -1);
+    EXPECT_EQ(dem.stepFor(1e-2).a, 1);
+    // Standing still it cannot meet the sphere in 10 ms
+    dem.bodies()[1].angularVelocity = vec3::Zero();
+    EXPECT_EQ(dem.stepFor(1e-2).a, -1);
+}
+
+
 TEST(stepFor, theFluidsDampingBoundsTheFreeFlight)
 {
     demSettings s;

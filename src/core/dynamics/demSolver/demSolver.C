@@ -1150,18 +1150,26 @@ demSolver::stepChoice demSolver::stepFor(double T) const
           - bodies_[i].geometry->boundingRadius() - bodies_[j].geometry->boundingRadius();
         if (gap <= travel[i] + travel[j] + reach) consider(i, j);
     }
-    // Walls: the distance from the body's centre to the wall's surface
+    // Walls: the distance from the body's centre to the wall's surface. A
+    // turning wall (prescribed) moves near the body at most at
+    // |v| + |w| |x - c|: no box test for it
     for (int w = 0; w < n; ++w)
     {
         if (!isWall_[w]) continue;
+        const rigidBody& W = bodies_[w];
+        const double spin = W.angularVelocity.norm();
         for (const int i : others)
         {
-            if (!bodies_[i].dynamic() || !grown[w].overlaps(grown[i])) continue;
+            if (!bodies_[i].dynamic() || (spin == 0 && !grown[w].overlaps(grown[i])))
+            {
+                continue;
+            }
             const vec3& x = bodies_[i].pose.position();
-            const double gap =
-                std::abs(bodies_[w].geometry->closest(bodies_[w].pose, x).distance)
-              - bodies_[i].geometry->boundingRadius();
-            if (gap <= travel[i] + travel[w] + reach) consider(w, i);
+            const double d = std::abs(W.geometry->closest(W.pose, x).distance);
+            const double gap = d - bodies_[i].geometry->boundingRadius();
+            const double wallTravel =
+                travel[w] + 2*spin*((x - W.pose.position()).norm() + d)*T;
+            if (gap <= travel[i] + wallTravel + reach) consider(w, i);
         }
     }
 
