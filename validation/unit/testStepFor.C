@@ -5,6 +5,7 @@
 // anywhere; and the answer is the one of the small step everywhere.
 
 #include "demSolver.H"
+#include "timeStepExplanation.H"
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
@@ -59,6 +60,8 @@ TEST(stepFor, bodiesThatCannotMeetTakeOneStep)
     const demSolver::stepChoice d = dem.stepFor(0.5);
     EXPECT_EQ(d.a, 0);
     EXPECT_EQ(d.b, 1);
+    EXPECT_EQ(d.nameA, "a");
+    EXPECT_EQ(d.nameB, "b");
     EXPECT_DOUBLE_EQ(d.deltaT, dem.timeStep());
 }
 
@@ -205,4 +208,20 @@ TEST(stepFor, aBounceAdvancedInLongChunksIsTheBounceOfTheSmallStep)
     EXPECT_NEAR(a.second, b.second, 3e-3*b.second);
     EXPECT_NEAR(a.first, b.first, 1e-4);
     EXPECT_LT(nChunks, nSmall/5) << nChunks << " steps against " << nSmall;
+}
+
+
+TEST(stepFor, theLogLineNamesThePairAfterBodiesWereRemoved)
+{
+    // Streams remove bodies after the advance, before the log line: the
+    // pair is named as it was chosen (no stale index)
+    demSettings s;
+    demSolver dem({material("glass", 6.3e10)}, s);
+    dem.addBody(sphere("a", 0.005, vec3(0, 0, 0.1)));
+    dem.addBody(sphere("b", 0.005, vec3(0.0099, 0, 0.1)));
+    dem.advance(1e-4);
+    EXPECT_EQ(dem.lastStep().a, 0);
+    dem.removeBodies({0, 1});
+    const std::string line = timeStepExplanation::lastStep(dem);
+    EXPECT_NE(line.find("(a against b, 1 pair can meet)"), std::string::npos) << line;
 }

@@ -1204,6 +1204,11 @@ demSolver::stepChoice demSolver::stepFor(double T) const
         }
         dt = std::max(dt, timeStep());
     }
+    if (c.a >= 0)
+    {
+        c.nameA = bodies_[c.a].name;
+        c.nameB = bodies_[c.b].name;
+    }
     c.deltaT = std::min(dt, T);
     return c;
 }

@@ -120,7 +120,7 @@ std::string timeStepExplanation::lastStep(const demSolver& dem)
     }
     else
     {
-        os  << dem.bodies()[c.a].name << " against " << dem.bodies()[c.b].name
+        os  << c.nameA << " against " << c.nameB
             << ", " << c.pairs << (c.pairs == 1 ? " pair" : " pairs") << " can meet)";
     }
     return os.str();
