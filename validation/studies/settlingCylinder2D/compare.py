@@ -9,7 +9,8 @@ For each immersed run (makeCase.py immersed, run with pimpleFoam) the
 terminal velocity is the mean settling speed -vy over the last -window
 seconds of postProcessing/bodies/0/bodies.dat; the speed must have settled
 there (its change over the window below 0.5% of it) and the body must have
-stayed on the axis (|x| below 1e-3 D). Prints a table row per run and exits
+stayed near the axis (|x| below 1e-2 D: the reference is the centred body;
+an offset that small changes its drag by about 1e-4). Prints a table row per run and exits
 1 if a run misses the reference by more than -tolerance or has not settled.
 """
 import argparse, math, os, sys
@@ -63,7 +64,7 @@ def main():
         drift = (m2 - m1)/ut
         xmax = max(abs(xi) for xi in x)/D
         err = ut/a.reference - 1
-        good = abs(err) <= a.tolerance and abs(drift) < 0.005 and xmax < 1e-3
+        good = abs(err) <= a.tolerance and abs(drift) < 0.005 and xmax < 1e-2
         ok = ok and good
         print("| %s | %g | %.5f | %+.2f%% | %+.2f%% | %.1e |%s"
               % (os.path.basename(os.path.normpath(run)), cellsPerD(run), ut, 100*err, 100*drift, xmax,
