@@ -2,6 +2,7 @@
 #include "immersedDEMReader.H"
 #include "uniformDimensionedFields.H"
 #include "coreConversion.H"
+#include "pstreamCommunicator.H"
 
 using namespace immersedDEM;
 
@@ -53,6 +54,15 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     std::vector<bodyStream> streams;
     dem_ = immersedDEMReader::read(properties_, surfaceDir, g.value(), &mesh, &streams);
     dem_->setTime(mesh.time().value());
+    // In parallel the ranks share out the DEM's pair evaluations (every
+    // rank holds every body; the trajectories stay the serial run's)
+    if (Pstream::parRun())
+    {
+        dem_->setCommunicator
+        (
+            std::make_shared<immersedDEMParallel::pstreamCommunicator>()
+        );
+    }
     streams_.reset
     (
         new immersedDEMStreams(properties_, surfaceDir, std::move(streams), &mesh, *dem_)

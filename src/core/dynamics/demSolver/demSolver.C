@@ -89,6 +89,7 @@ int demSolver::addBody(rigidBody b, bool wall)
     }
     bodies_.push_back(std::move(b));
     isWall_.push_back(wall);
+    identity_.push_back(nextIdentity_++);
     forcesCurrent_ = false;
     return int(bodies_.size()) - 1;
 }
@@ -118,6 +119,7 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
     }
     std::vector<rigidBody> bodies;
     std::vector<char> isWall;
+    std::vector<std::uint64_t> identity;
     for (int i = 0; i < n; ++i)
     {
         if (gone[i]) continue;
@@ -125,9 +127,11 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
         kept.push_back(i);
         bodies.push_back(std::move(bodies_[i]));
         isWall.push_back(isWall_[i]);
+        identity.push_back(identity_[i]);
     }
     bodies_.swap(bodies);
     isWall_.swap(isWall);
+    identity_.swap(identity);
 
     // Pairs keep their order (wall or lower index first): renumbering
     // keeps the order of the indices
@@ -551,10 +555,10 @@ bool demSolver::applyContacts
         h.point = r.point;
         hs.push_back(h);
 
-        B.contactForce += f.force;
-        B.contactTorque += (r.point - B.pose.position()).cross(f.force) + f.couple;
-        A.contactForce -= f.force;
-        A.contactTorque -= (r.point - A.pose.position()).cross(f.force) + f.couple;
+        load_.forceB += f.force;
+        load_.torqueB += (r.point - B.pose.position()).cross(f.force) + f.couple;
+        load_.forceA -= f.force;
+        load_.torqueA -= (r.point - A.pose.position()).cross(f.force) + f.couple;
 
         contactRecord rec;
         rec.a = ia;
@@ -720,7 +724,7 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
 
 void demSolver::applyFilm
 (
-    rigidBody& A, rigidBody& B, const vec3& x, const vec3& n,
+    const rigidBody& A, const rigidBody& B, const vec3& x, const vec3& n,
     double gap, double R, double hAct, double hRough
 )
 {
@@ -752,10 +756,11 @@ void demSolver::applyFilm
     }
     const double un = (B.pointVelocity(x) - A.pointVelocity(x)).dot(n);
     const vec3 F = -coeff*un*n;
-    B.lubricationForce += F;
-    B.lubricationTorque += (x - B.pose.position()).cross(F);
-    A.lubricationForce -= F;
-    A.lubricationTorque -= (x - A.pose.position()).cross(F);
+    load_.filmForceB += F;
+    load_.filmTorqueB += (x - B.pose.position()).cross(F);
+    load_.filmForceA -= F;
+    load_.filmTorqueA -= (x - A.pose.position()).cross(F);
+    load_.film = true;
     ++counters_.lubricatedPairs;
 }
 
@@ -931,9 +936,20 @@ void demSolver::computeContacts()
     const auto searchStart = clock::now();
     const auto candidates = candidatePairs();
     counters_.searchSeconds += since(searchStart);
+    // This process's pairs (all of them, alone): their loads, summed per
+    // pair, are added to the bodies in the order of the pairs once every
+    // process's are gathered, so the sums do not depend on who made them
+    loads_.clear();
     for (const auto& p : candidates)
     {
-        const size_t contactsFrom = contacts_.size();
+        if (!owns(p.first, p.second))
+        {
+            continue;
+        }
+        load_ = pairLoad();
+        load_.a = p.first;
+        load_.b = p.second;
+        load_.contactsFrom = contacts_.size();
         if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
         {
             contactOf(p);
@@ -941,9 +957,31 @@ void demSolver::computeContacts()
         if (lub)
         {
             const auto lubStart = clock::now();
-            lubricatePair(p.first, p.second, contactsFrom);
+            lubricatePair(p.first, p.second, load_.contactsFrom);
             counters_.lubricationSeconds += since(lubStart);
         }
+        load_.contactsTo = contacts_.size();
+        if (load_.film || load_.contactsTo > load_.contactsFrom)
+        {
+            loads_.push_back(load_);
+        }
+    }
+    if (comm_)
+    {
+        gatherLoads(next);
+    }
+    for (const pairLoad& l : loads_)
+    {
+        rigidBody& A = bodies_[l.a];
+        rigidBody& B = bodies_[l.b];
+        A.contactForce += l.forceA;
+        A.contactTorque += l.torqueA;
+        B.contactForce += l.forceB;
+        B.contactTorque += l.torqueB;
+        A.lubricationForce += l.filmForceA;
+        A.lubricationTorque += l.filmTorqueA;
+        B.lubricationForce += l.filmForceB;
+        B.lubricationTorque += l.filmTorqueB;
     }
     if (lub)
     {
@@ -962,6 +1000,144 @@ void demSolver::computeContacts()
     forcesCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+
+void demSolver::gatherLoads
+(
+    std::map<std::pair<int, int>, std::vector<contactHistory>>& next
+)
+{
+    // This process's pairs, flat: per pair a, b, film, its region count,
+    // its eight load vectors, then per region the contact record and the
+    // history the law left
+    std::vector<double> mine;
+    auto put3 = [&mine](const vec3& v) { mine.insert(mine.end(), {v.x(), v.y(), v.z()}); };
+    mine.push_back(double(loads_.size()));
+    for (const pairLoad& l : loads_)
+    {
+        const size_t nr = l.contactsTo - l.contactsFrom;
+        mine.insert(mine.end(), {double(l.a), double(l.b), double(l.film), double(nr)});
+        for (const vec3* v : {&l.forceA, &l.torqueA, &l.forceB, &l.torqueB,
+            &l.filmForceA, &l.filmTorqueA, &l.filmForceB, &l.filmTorqueB})
+        {
+            put3(*v);
+        }
+        const std::vector<contactHistory>* hs = nullptr;
+        if (nr > 0)
+        {
+            hs = &next.at(std::make_pair(l.a, l.b));
+        }
+        for (size_t k = 0; k < nr; ++k)
+        {
+            const contactRecord& c = contacts_[l.contactsFrom + k];
+            const contactRegion& r = c.region;
+            mine.push_back(r.volume);
+            put3(r.point);
+            put3(r.normal);
+            mine.push_back(r.area);
+            put3(r.areaVector);
+            put3(r.areaMoment);
+            const contactOutput& f = c.force;
+            put3(f.force);
+            mine.push_back(f.normalForce);
+            put3(f.tangentialForce);
+            put3(f.couple);
+            mine.push_back(double(f.sliding));
+            const contactHistory& h = (*hs)[k];
+            put3(h.tangentialSpring);
+            put3(h.normal);
+            put3(h.point);
+            mine.push_back(h.approach);
+            mine.push_back(h.maxNormalForce);
+        }
+    }
+
+    const std::vector<std::vector<double>> all = comm_->allGather(mine);
+
+    // Every process's pairs, read back, in the order of the pairs (each
+    // process's are in that order already; a pair has one owner)
+    struct gathered
+    {
+        pairLoad load;
+        std::vector<contactRecord> contacts;
+        std::vector<contactHistory> histories;
+    };
+    std::vector<gathered> pairs;
+    for (const std::vector<double>& buf : all)
+    {
+        size_t at = 0;
+        auto get = [&buf, &at]() { return buf.at(at++); };
+        auto get3 = [&get]() { const double x = get(), y = get(), z = get(); return vec3(x, y, z); };
+        const size_t nPairs = size_t(get());
+        for (size_t k = 0; k < nPairs; ++k)
+        {
+            gathered g;
+            pairLoad& l = g.load;
+            l.a = int(get());
+            l.b = int(get());
+            l.film = get() != 0;
+            const size_t nr = size_t(get());
+            for (vec3* v : {&l.forceA, &l.torqueA, &l.forceB, &l.torqueB,
+                &l.filmForceA, &l.filmTorqueA, &l.filmForceB, &l.filmTorqueB})
+            {
+                *v = get3();
+            }
+            for (size_t j = 0; j < nr; ++j)
+            {
+                contactRecord c;
+                c.a = l.a;
+                c.b = l.b;
+                contactRegion& r = c.region;
+                r.volume = get();
+                r.point = get3();
+                r.normal = get3();
+                r.area = get();
+                r.areaVector = get3();
+                r.areaMoment = get3();
+                contactOutput& f = c.force;
+                f.force = get3();
+                f.normalForce = get();
+                f.tangentialForce = get3();
+                f.couple = get3();
+                f.sliding = get() != 0;
+                contactHistory h;
+                h.tangentialSpring = get3();
+                h.normal = get3();
+                h.point = get3();
+                h.approach = get();
+                h.maxNormalForce = get();
+                g.contacts.push_back(c);
+                g.histories.push_back(h);
+            }
+            pairs.push_back(std::move(g));
+        }
+        if (at != buf.size())
+        {
+            throw coreError("demSolver: a process's contact loads were not read whole");
+        }
+    }
+    std::sort
+    (
+        pairs.begin(), pairs.end(),
+        [](const gathered& x, const gathered& y)
+        {
+            return std::make_pair(x.load.a, x.load.b) < std::make_pair(y.load.a, y.load.b);
+        }
+    );
+    loads_.clear();
+    contacts_.clear();
+    for (gathered& g : pairs)
+    {
+        g.load.contactsFrom = contacts_.size();
+        contacts_.insert(contacts_.end(), g.contacts.begin(), g.contacts.end());
+        g.load.contactsTo = contacts_.size();
+        if (!g.histories.empty())
+        {
+            next[std::make_pair(g.load.a, g.load.b)] = std::move(g.histories);
+        }
+        loads_.push_back(g.load);
+    }
 }
 
 

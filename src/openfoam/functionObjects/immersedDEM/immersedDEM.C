@@ -409,6 +409,33 @@ bool Foam::functionObjects::immersedDEM::end()
     }
     Log << endl;
 
+    // In parallel: how the ranks shared the DEM's pairs (each evaluates
+    // the contacts and films of the pairs it owns)
+    if (Pstream::parRun())
+    {
+        const auto& w = state_.dem().work();
+        labelList contacts(Pstream::nProcs(), 0), films(Pstream::nProcs(), 0);
+        contacts[Pstream::myProcNo()] = label(w.pairEvaluations + w.reusedEvaluations);
+        films[Pstream::myProcNo()] = label(w.lubricatedPairs);
+        Pstream::gatherList(contacts);
+        Pstream::scatterList(contacts);
+        Pstream::gatherList(films);
+        Pstream::scatterList(films);
+        Log << type() << ' ' << name() << ": the DEM's pairs shared by "
+            << Pstream::nProcs() << " processors; contacts evaluated or carried"
+            << " per processor:";
+        forAll(contacts, p)
+        {
+            Log << ' ' << contacts[p];
+        }
+        Log << "; films per processor:";
+        forAll(films, p)
+        {
+            Log << ' ' << films[p];
+        }
+        Log << endl;
+    }
+
     // The seconds per part over the whole run (the DEM's own split from
     // its counters), against the run's wall time since this function
     // object started
