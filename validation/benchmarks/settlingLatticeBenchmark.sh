@@ -8,14 +8,18 @@
 # DEM's microseconds per body per sub-step; with -np 2 also the parallel
 # run's wall seconds per step and the speedup; with -before LIBDIR the same
 # case with another build's libimmersedDEM.so (a copy of .build/lib), run
-# alternately with this one, and the ratios.
+# alternately with this one, and the ratios (with -np 2 both builds run in
+# parallel too: the DEM's seconds and the speedups side by side);
+# -spacing CELLS packs the lattice (makeLattice.py --spacing: 10 makes
+# neighbours interlock, a block where the DEM dominates).
 #
 #   validation/benchmarks/settlingLatticeBenchmark.sh [-lattice "4 4 8"]
-#       [-steps 8] [-np 2] [-before LIBDIR] [-repeat 1] [-work DIR]
+#       [-steps 8] [-np 2] [-before LIBDIR] [-repeat 1] [-spacing CELLS]
+#       [-work DIR]
 set -u
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../.." && pwd -P)"
-lattice="4 4 8"; steps=8; np=1; before=""; repeat=1
+lattice="4 4 8"; steps=8; np=1; before=""; repeat=1; spacing=0
 work=/tmp/immersedDEM-benchmark-settlingLattice
 while [ $# -gt 0 ]
 do
@@ -25,6 +29,7 @@ do
         -np)      np="$2"; shift 2 ;;
         -before)  before="$(cd "$2" && pwd -P)"; shift 2 ;;
         -repeat)  repeat="$2"; shift 2 ;;
+        -spacing) spacing="$2"; shift 2 ;;
         -work)    work="$2"; shift 2 ;;
         *) echo "Unknown option $1" 1>&2; exit 1 ;;
     esac
@@ -32,7 +37,7 @@ done
 . "$project/src/etc/bashrc"
 rm -rf "$work"; mkdir -p "$work"
 python3 "$here/settlingLattice/makeLattice.py" "$work/case" --lattice "$lattice" \
-    --steps "$steps" --np 2 > "$work/case.txt" || exit 1
+    --steps "$steps" --np 2 --spacing "$spacing" > "$work/case.txt" || exit 1
 cat "$work/case.txt"
 (cd "$work/case" && blockMesh > log.blockMesh 2>&1) || { echo "blockMesh failed: see $work/case"; exit 1; }
 
@@ -66,6 +71,10 @@ do
     run "serial$k" "" 1 || exit 1; runs="$runs serial$k"
     if [ "$np" -gt 1 ]
     then
+        if [ -n "$before" ]
+        then
+            run "beforePar$k" "$before" "$np" || exit 1; runs="$runs beforePar$k"
+        fi
         run "parallel$k" "" "$np" || exit 1; runs="$runs parallel$k"
     fi
 done
@@ -105,7 +114,7 @@ for run in runs:
     print("%-11s %6d %9.3f %12.2f %9.3f %9.3f %9.3f %9.3f %9.2f %7.1f%% %15.2f" % (run, r["bodies"], r["proj"],
           r["projBody"], r["dem"], r["forcing"], r["plugin"], r["cpu"], r["wall"], 100*r["share"], r["demBody"]))
 def mean(kind, key):
-    v = [res[r][key] for r in runs if r.startswith(kind)]
+    v = [res[r][key] for r in runs if re.sub(r"\d+$", "", r) == kind]
     return sum(v)/len(v) if v else None
 s = {k: mean("serial", k) for k in ("proj", "dem", "cpu", "wall", "share", "demBody")}
 print("\nthis build: plugin share %.1f%% (target <= 30%%), DEM %.2f us per body per sub-step (target <= 10),"
@@ -117,4 +126,10 @@ if any(r.startswith("before") for r in runs):
 if any(r.startswith("parallel") for r in runs):
     p = mean("parallel", "wall")
     print("mpirun -np 2: %.2f s wall per CFD step, serial %.2f s: speedup %.2f (target >= 1.7)" % (p, s["wall"], s["wall"]/p))
+    print("mpirun -np 2: DEM %.3f s per CFD step on the master, serial %.3f s: DEM speedup %.2f"
+          % (mean("parallel", "dem"), s["dem"], s["dem"]/mean("parallel", "dem")))
+if any(r.startswith("beforePar") for r in runs):
+    bp, bs = mean("beforePar", "wall"), b["wall"]
+    print("before, mpirun -np 2: %.2f s wall per CFD step, serial %.2f s: speedup %.2f; DEM %.3f s, serial %.3f s:"
+          " DEM speedup %.2f" % (bp, bs, bs/bp, mean("beforePar", "dem"), b["dem"], b["dem"]/mean("beforePar", "dem")))
 PY

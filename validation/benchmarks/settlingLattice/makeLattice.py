@@ -6,10 +6,12 @@ nx x ny x nz in a tank of water with wall patches (noSlip, DEM walls),
 cubic cells of d/cellsPerBody, soft glass (Y 1e7, rho 2500), a fixed CFD
 step of 1 ms, stock pimpleFoam, default coupling and contact settings.
 The lattice spacing keeps every pair apart (no contact), as in the issue's
-'settling lattice'.
+'settling lattice'; --spacing sets it in fluid cells instead (10: 1.25 d,
+less than two of the star's largest radii: neighbours interlock, a packed
+block where the DEM's contacts, films and separation proofs dominate).
 
   makeLattice.py <case> --lattice "4 4 8" [--cellsPerBody 8] [--steps 5]
-                 [--seed 1] [--np 2]
+                 [--seed 1] [--np 2] [--spacing CELLS]
 """
 import argparse, math, os, random, shutil, struct, sys
 
@@ -27,6 +29,8 @@ p.add_argument("--cellsPerBody", type=float, default=8, help="d/h")
 p.add_argument("--steps", type=int, default=5, help="CFD steps of 1 ms")
 p.add_argument("--seed", type=int, default=1)
 p.add_argument("--np", type=int, default=2, help="subdomains of decomposeParDict")
+p.add_argument("--spacing", type=int, default=0,
+               help="lattice spacing in fluid cells (0: two radii and two cells apart)")
 a = p.parse_args()
 nx, ny, nz = (int(x) for x in a.lattice.split())
 
@@ -41,7 +45,7 @@ for i in range(nTri):
 d = 0.01
 h = d/a.cellsPerBody
 # Spacing: two radii and two cells of fluid, in whole cells
-spacing = h*math.ceil((2*rmax + 2*h)/h)
+spacing = h*(a.spacing if a.spacing > 0 else math.ceil((2*rmax + 2*h)/h))
 n = [nx, ny, nz]
 size = [k*spacing for k in n]
 cells = [round(s/h) for s in size]

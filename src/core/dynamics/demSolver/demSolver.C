@@ -792,6 +792,7 @@ void demSolver::computeContacts()
     if (filter)
     {
         filter_.setReach(pairFilter::engineReach(engine_->type(), settings_.overlap));
+        filter_.rejectProvenGaps(true);
         filter_.beginSweep();
     }
     const bool full = fullNext_ || !settings_.reuseContacts;

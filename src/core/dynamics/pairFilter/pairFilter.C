@@ -243,14 +243,16 @@ bool pairFilter::separated
         return false;
     }
 
+    // The gap a proof must exceed: any positive one, or the reach
+    const double beyond = provenGapRejects_ ? 0.0 : reach_;
     record& r = records_[key(a, b)];
     // A record of other shapes (a body given a new shape) is void
     const bool known = r.stamp != 0 && r.A == &A && r.B == &B;
     r.stamp = stamp_;
-    if (known && r.gap > reach_)
+    if (known && r.gap > beyond)
     {
         const double g = r.gap - motionBound(r.pA, pA, RA) - motionBound(r.pB, pB, RB);
-        if (g > reach_)
+        if (g > beyond)
         {
             ++counters_.rejectedByReuse;
             return true;
@@ -270,9 +272,9 @@ bool pairFilter::separated
     r.pB = pB;
     r.A = &A;
     r.B = &B;
-    r.gap = gapLowerBound(A, pA, B, pB, reach_, cap);
+    r.gap = gapLowerBound(A, pA, B, pB, beyond, cap);
     r.touching = false;
-    if (r.gap > reach_)
+    if (r.gap > beyond)
     {
         ++counters_.rejectedByProof;
         return true;

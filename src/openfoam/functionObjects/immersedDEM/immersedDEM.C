@@ -409,29 +409,42 @@ bool Foam::functionObjects::immersedDEM::end()
     }
     Log << endl;
 
-    // In parallel: how the ranks shared the DEM's pairs (each evaluates
-    // the contacts and films of the pairs it owns)
-    if (Pstream::parRun())
+    // The DEM's pair work over the run: contacts evaluated by the engine,
+    // carried from an earlier evaluation, films; in parallel per processor
+    // (each evaluates the pairs it owns)
     {
         const auto& w = state_.dem().work();
-        labelList contacts(Pstream::nProcs(), 0), films(Pstream::nProcs(), 0);
-        contacts[Pstream::myProcNo()] = label(w.pairEvaluations + w.reusedEvaluations);
-        films[Pstream::myProcNo()] = label(w.lubricatedPairs);
-        Pstream::gatherList(contacts);
-        Pstream::scatterList(contacts);
-        Pstream::gatherList(films);
-        Pstream::scatterList(films);
-        Log << type() << ' ' << name() << ": the DEM's pairs shared by "
-            << Pstream::nProcs() << " processors; contacts evaluated or carried"
-            << " per processor:";
-        forAll(contacts, p)
+        const label nProcs = Pstream::parRun() ? Pstream::nProcs() : 1;
+        const label me = Pstream::parRun() ? Pstream::myProcNo() : 0;
+        labelList evaluated(nProcs, 0), carried(nProcs, 0), films(nProcs, 0);
+        evaluated[me] = label(w.pairEvaluations);
+        carried[me] = label(w.reusedEvaluations);
+        films[me] = label(w.lubricatedPairs);
+        if (Pstream::parRun())
         {
-            Log << ' ' << contacts[p];
+            for (labelList* l : {&evaluated, &carried, &films})
+            {
+                Pstream::gatherList(*l);
+                Pstream::scatterList(*l);
+            }
         }
-        Log << "; films per processor:";
-        forAll(films, p)
+        Log << type() << ' ' << name() << ": contacts evaluated "
+            << sum(evaluated) << ", carried " << sum(carried)
+            << ", films " << sum(films) << " over " << state_.dem().work().steps
+            << " DEM steps";
+        if (Pstream::parRun())
         {
-            Log << ' ' << films[p];
+            Log << "; the DEM's pairs shared by " << nProcs
+                << " processors; contacts evaluated or carried per processor:";
+            forAll(evaluated, p)
+            {
+                Log << ' ' << evaluated[p] + carried[p];
+            }
+            Log << "; films per processor:";
+            forAll(films, p)
+            {
+                Log << ' ' << films[p];
+            }
         }
         Log << endl;
     }
