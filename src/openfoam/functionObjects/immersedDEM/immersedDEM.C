@@ -7,6 +7,7 @@
 #include "clockTime.H"
 #include "timeStepExplanation.H"
 #include "addToRunTimeSelectionTable.H"
+#include <string>
 
 namespace Foam
 {
@@ -411,39 +412,41 @@ bool Foam::functionObjects::immersedDEM::end()
 
     // The DEM's pair work over the run: contacts evaluated by the engine,
     // carried from an earlier evaluation, films; in parallel per processor
-    // (each evaluates the pairs it owns)
+    // (each evaluates the pairs it owns). Counts as doubles: exact to
+    // 2^53, where a label (32 bits) would wrap in a long dense run
     {
         const auto& w = state_.dem().work();
         const label nProcs = Pstream::parRun() ? Pstream::nProcs() : 1;
         const label me = Pstream::parRun() ? Pstream::myProcNo() : 0;
-        labelList evaluated(nProcs, 0), carried(nProcs, 0), films(nProcs, 0);
-        evaluated[me] = label(w.pairEvaluations);
-        carried[me] = label(w.reusedEvaluations);
-        films[me] = label(w.lubricatedPairs);
+        scalarList evaluated(nProcs, Zero), carried(nProcs, Zero), films(nProcs, Zero);
+        evaluated[me] = scalar(w.pairEvaluations);
+        carried[me] = scalar(w.reusedEvaluations);
+        films[me] = scalar(w.lubricatedPairs);
         if (Pstream::parRun())
         {
-            for (labelList* l : {&evaluated, &carried, &films})
+            for (scalarList* l : {&evaluated, &carried, &films})
             {
                 Pstream::gatherList(*l);
                 Pstream::scatterList(*l);
             }
         }
+        auto count = [](scalar x) { return std::to_string(static_cast<long long>(x)); };
         Log << type() << ' ' << name() << ": contacts evaluated "
-            << sum(evaluated) << ", carried " << sum(carried)
-            << ", films " << sum(films) << " over " << state_.dem().work().steps
-            << " DEM steps";
+            << count(sum(evaluated)).c_str() << ", carried " << count(sum(carried)).c_str()
+            << ", films " << count(sum(films)).c_str() << " over "
+            << count(scalar(w.steps)).c_str() << " DEM steps";
         if (Pstream::parRun())
         {
             Log << "; the DEM's pairs shared by " << nProcs
                 << " processors; contacts evaluated or carried per processor:";
             forAll(evaluated, p)
             {
-                Log << ' ' << evaluated[p] + carried[p];
+                Log << ' ' << count(evaluated[p] + carried[p]).c_str();
             }
             Log << "; films per processor:";
             forAll(films, p)
             {
-                Log << ' ' << films[p];
+                Log << ' ' << count(films[p]).c_str();
             }
         }
         Log << endl;
