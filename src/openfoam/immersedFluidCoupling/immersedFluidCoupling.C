@@ -367,10 +367,10 @@ void Foam::immersedFluidCoupling::fluidLoads
     // the others carry their added mass as inertia, so that an impact
     // within the next step keeps its rebound
     List<bool> touching(bodies.size(), !impactInertia);
-    for (const auto& h : dem.histories())
+    for (const auto& p : dem.pairsInContact())
     {
-        if (h.first.first < touching.size()) touching[h.first.first] = true;
-        if (h.first.second < touching.size()) touching[h.first.second] = true;
+        if (p.first < touching.size()) touching[p.first] = true;
+        if (p.second < touching.size()) touching[p.second] = true;
     }
     forAll(M, i)
     {

@@ -135,16 +135,7 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
 
     // Pairs keep their order (wall or lower index first): renumbering
     // keeps the order of the indices
-    std::map<std::pair<int, int>, std::vector<contactHistory>> history;
-    for (auto& h : history_)
-    {
-        const int a = newIndex[h.first.first], b = newIndex[h.first.second];
-        if (a >= 0 && b >= 0)
-        {
-            history.emplace(std::make_pair(a, b), std::move(h.second));
-        }
-    }
-    history_.swap(history);
+    history_.renumber(newIndex);
     // Reuse records are keyed by the old indices: the next contacts are
     // evaluated in full
     reuse_.clear();
@@ -173,6 +164,14 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
     neighbours_.clear();
     forcesCurrent_ = false;
     return kept;
+}
+
+
+std::vector<std::pair<int, int>> demSolver::pairsInContact() const
+{
+    std::vector<std::pair<int, int>> pairs(history_.size());
+    for (size_t k = 0; k < pairs.size(); ++k) pairs[k] = history_.key(k);
+    return pairs;
 }
 
 
@@ -461,8 +460,7 @@ bool demSolver::reused
 
 bool demSolver::applyContacts
 (
-    int ia, int ib, const contactGeometry& g,
-    std::map<std::pair<int, int>, std::vector<contactHistory>>& next
+    int ia, int ib, const contactGeometry& g, contactHistoryTable& next
 )
 {
     rigidBody& A = bodies_[ia];
@@ -472,20 +470,12 @@ bool demSolver::applyContacts
         return false;
     }
 
-    // A lasting contact's map node moves from the last step's histories to
-    // the next step's, its old values read from a scratch copy: no
-    // allocation per contact and step
+    // The pair's histories of the last step (pairs come in increasing
+    // order: found by the table's cursor), and its entry in the next
     const auto key = std::make_pair(ia, ib);
-    auto node = history_.extract(key);
-    oldHistory_.clear();
-    if (node)
-    {
-        oldHistory_.swap(node.mapped());
-        node.mapped().clear();
-    }
-    std::vector<contactHistory>& hs =
-        node ? next.insert(std::move(node)).position->second : next[key];
-    taken_.assign(oldHistory_.size(), 0);
+    const contactHistoryTable::range oldHistory = history_.find(key);
+    next.beginPair(key);
+    taken_.assign(oldHistory.size(), 0);
 
     const pairMaterial& pm = pairMaterialOf(A.material, B.material);
     const double mA = A.mass(), mB = B.mass();
@@ -518,14 +508,14 @@ bool demSolver::applyContacts
     {
         // The history of the nearest region of the last step, if close
         contactHistory h;
-        if (!oldHistory_.empty())
+        if (!oldHistory.empty())
         {
             const double reach = std::max(settings_.overlap.h, std::sqrt(std::max(r.area, 0.0)));
             int best = -1;
             double bestDist = reach;
-            for (size_t k = 0; k < oldHistory_.size(); ++k)
+            for (size_t k = 0; k < oldHistory.size(); ++k)
             {
-                const double d = (oldHistory_[k].point - r.point).norm();
+                const double d = (oldHistory.first[k].point - r.point).norm();
                 if (!taken_[k] && d <= bestDist)
                 {
                     best = int(k);
@@ -535,7 +525,7 @@ bool demSolver::applyContacts
             if (best >= 0)
             {
                 taken_[best] = 1;
-                h = oldHistory_[best];
+                h = oldHistory.first[best];
             }
         }
 
@@ -553,7 +543,7 @@ bool demSolver::applyContacts
         const contactOutput f = law_->evaluate(in, h);
         h.normal = r.normal;
         h.point = r.point;
-        hs.push_back(h);
+        next.add(h);
 
         load_.forceB += f.force;
         load_.torqueB += (r.point - B.pose.position()).cross(f.force) + f.couple;
@@ -787,7 +777,8 @@ void demSolver::computeContacts()
     }
     updateExternalLoads(loadTime_);
     contacts_.clear();
-    std::map<std::pair<int, int>, std::vector<contactHistory>> next;
+    contactHistoryTable& next = nextHistory_;
+    next.clear();
     const bool filter = settings_.rejectSeparated;
     if (filter)
     {
@@ -997,6 +988,7 @@ void demSolver::computeContacts()
     {
         filter_.endSweep();
     }
+    next.finish();
     history_.swap(next);
     forcesCurrent_ = true;
     counters_.contactSeconds +=
@@ -1004,10 +996,7 @@ void demSolver::computeContacts()
 }
 
 
-void demSolver::gatherLoads
-(
-    std::map<std::pair<int, int>, std::vector<contactHistory>>& next
-)
+void demSolver::gatherLoads(contactHistoryTable& next)
 {
     // This process's pairs, flat: per pair a, b, film, its region count,
     // its eight load vectors, then per region the contact record and the
@@ -1024,10 +1013,14 @@ void demSolver::gatherLoads
         {
             put3(*v);
         }
-        const std::vector<contactHistory>* hs = nullptr;
+        contactHistoryTable::range hs;
         if (nr > 0)
         {
-            hs = &next.at(std::make_pair(l.a, l.b));
+            hs = next.find(std::make_pair(l.a, l.b));
+            if (hs.size() != nr)
+            {
+                throw coreError("demSolver: a pair's contact histories do not match its contacts");
+            }
         }
         for (size_t k = 0; k < nr; ++k)
         {
@@ -1045,7 +1038,7 @@ void demSolver::gatherLoads
             put3(f.tangentialForce);
             put3(f.couple);
             mine.push_back(double(f.sliding));
-            const contactHistory& h = (*hs)[k];
+            const contactHistory& h = hs.first[k];
             put3(h.tangentialSpring);
             put3(h.normal);
             put3(h.point);
@@ -1128,6 +1121,7 @@ void demSolver::gatherLoads
     );
     loads_.clear();
     contacts_.clear();
+    next.clear();
     for (gathered& g : pairs)
     {
         g.load.contactsFrom = contacts_.size();
@@ -1135,7 +1129,8 @@ void demSolver::gatherLoads
         g.load.contactsTo = contacts_.size();
         if (!g.histories.empty())
         {
-            next[std::make_pair(g.load.a, g.load.b)] = std::move(g.histories);
+            next.beginPair(std::make_pair(g.load.a, g.load.b));
+            for (const contactHistory& h : g.histories) next.add(h);
         }
         loads_.push_back(g.load);
     }
