@@ -6,12 +6,15 @@ Description
     allGather. A pile of faceted bodies and spheres in a tank of wall
     patches, in a liquid (lubrication on), contact reuse on, a body removed
     on the way: every process's trajectories and contact histories are the
-    serial run's, bit for bit, and the pairs are shared out.
+    serial run's, bit for bit, and the pairs are shared out. A pour of
+    spheres on plane walls: the sphere sweep gives the general loop's
+    results bit for bit, alone and shared.
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
 #include "demCommunicator.H"
 #include "sphereShape.H"
+#include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
 #include "wallMeshShape.H"
 #include "primitiveMeshes.H"
@@ -306,5 +309,169 @@ TEST(demProcesses, sharedPairsGiveTheSerialTrajectoriesBitForBit)
         EXPECT_EQ(evaluations, serial.pairEvaluations);
         EXPECT_EQ(carried, serial.reusedEvaluations);
         EXPECT_EQ(films, serial.lubricatedPairs);
+    }
+}
+
+
+namespace
+{
+
+//- A pour of spheres of two sizes and two materials into a box of plane
+//  walls (one tilted), one fixed sphere in the way, with the Hertz law and
+//  the analytic engine; body 9 removed half way. sweep: the sphere sweep
+//  or the general loop
+runResult runSpherePour(bool sweep, std::shared_ptr<demCommunicator> comm)
+{
+    demSettings s;
+    s.gravity = vec3(0, 0, -9.81);
+    s.contactLaw = "hertzMindlin";
+    s.overlapMethod = "sphere";
+    s.sphereSweep = sweep;
+    contactMaterial glass = test::material("glass", 1e7);
+    glass.friction = 0.5;
+    glass.restitution = 0.3;
+    contactMaterial steel = test::material("steel", 2e7);
+    steel.restitution = 0.2;
+    steel.friction = 0.3;
+    demSolver dem({glass, steel}, s);
+    dem.setCommunicator(comm);
+
+    const double L = 0.03;
+    const std::vector<std::pair<vec3, vec3>> planes
+    {
+        {vec3(0, 0, 0), vec3(0, 0.2, 1).normalized()},
+        {vec3(0, 0, 0), vec3(1, 0, 0)},
+        {vec3(L, 0, 0), vec3(-1, 0, 0)},
+        {vec3(0, 0, 0), vec3(0, 1, 0)},
+        {vec3(0, L, 0), vec3(0, -1, 0)}
+    };
+    for (size_t k = 0; k < planes.size(); ++k)
+    {
+        rigidBody w("wall" + std::to_string(k), std::make_shared<halfSpaceShape>(), 1, int(k % 2));
+        w.pose = halfSpaceShape::poseOf(planes[k].first, planes[k].second);
+        w.motion = motionType::fixed;
+        dem.addBody(w, true);
+    }
+    rigidBody post("post", std::make_shared<sphereShape>(0.004), 2500, 1);
+    post.pose = bodyPose(vec3(0.5*L, 0.5*L, 0.008), quat::Identity());
+    post.motion = motionType::fixed;
+    dem.addBody(post);
+
+    const auto small = std::make_shared<sphereShape>(0.0018);
+    const auto large = std::make_shared<sphereShape>(0.0025);
+    std::mt19937 gen(11);
+    for (int k = 0; k < 40; ++k)
+    {
+        rigidBody b("s" + std::to_string(k), k % 3 ? small : large, 2500, k % 2);
+        const int i = k % 5, j = (k/5) % 4, l = k/20;
+        b.pose = bodyPose
+        (
+            vec3(0.004 + 0.0055*i, 0.005 + 0.0065*j, 0.018 + 0.006*l)
+          + test::randomVec(gen, -0.0004, 0.0004),
+            test::randomQuat(gen)
+        );
+        b.velocity = test::randomVec(gen, -0.1, 0.1);
+        b.angularVelocity = test::randomVec(gen, -20, 20);
+        dem.addBody(b);
+    }
+
+    runResult r;
+    for (int a = 0; a < 12; ++a)
+    {
+        if (a == 6)
+        {
+            dem.removeBodies({9});
+        }
+        dem.advance(0.015);
+        for (const rigidBody& b : dem.bodies())
+        {
+            const vec3 x = b.pose.position();
+            const quat& q = b.pose.orientation();
+            r.states.insert
+            (
+                r.states.end(),
+                {
+                    x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(),
+                    b.velocity.x(), b.velocity.y(), b.velocity.z(),
+                    b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z(),
+                    b.contactForce.x(), b.contactForce.y(), b.contactForce.z(),
+                    b.contactTorque.x(), b.contactTorque.y(), b.contactTorque.z()
+                }
+            );
+        }
+        for (const contactRecord& c : dem.contacts())
+        {
+            r.states.insert
+            (
+                r.states.end(),
+                {
+                    double(c.a), double(c.b), c.region.volume, c.region.point.x(),
+                    c.region.normal.y(), c.force.normalForce, c.force.tangentialForce.z()
+                }
+            );
+        }
+        r.contacts += long(dem.contacts().size());
+    }
+    for (const auto& h : dem.histories())
+    {
+        r.histories.insert(r.histories.end(), {double(h.first.first), double(h.first.second)});
+        for (const contactHistory& c : h.second)
+        {
+            r.histories.insert
+            (
+                r.histories.end(),
+                {
+                    c.tangentialSpring.x(), c.tangentialSpring.y(), c.tangentialSpring.z(),
+                    c.point.x(), c.normal.z(), c.approach, c.maxNormalForce
+                }
+            );
+        }
+    }
+    r.pairEvaluations = dem.work().sphereSweeps;
+    return r;
+}
+
+} // End anonymous namespace
+
+
+TEST(demProcesses, sphereSweepIsTheGeneralLoopBitForBit)
+{
+    // The general loop (pair filter, engine, applyContacts) against the
+    // sphere sweep, alone and with the pairs shared by 2 processes: the
+    // same states, contact records and histories, bit for bit
+    const runResult general = runSpherePour(false, nullptr);
+    ASSERT_EQ(general.pairEvaluations, 0);      // no sweep taken
+    ASSERT_GT(general.contacts, 200);
+    ASSERT_FALSE(general.histories.empty());
+
+    const runResult sweep = runSpherePour(true, nullptr);
+    ASSERT_GT(sweep.pairEvaluations, 1000);     // every evaluation a sweep
+    ASSERT_EQ(sweep.states.size(), general.states.size());
+    for (size_t k = 0; k < sweep.states.size(); ++k)
+    {
+        ASSERT_EQ(sweep.states[k], general.states[k]) << "value " << k;
+    }
+    ASSERT_EQ(sweep.histories, general.histories);
+    EXPECT_EQ(sweep.contacts, general.contacts);
+
+    sharedBoard board(2);
+    std::vector<runResult> ranks(2);
+    std::vector<std::thread> threads;
+    for (int rank = 0; rank < 2; ++rank)
+    {
+        threads.emplace_back
+        (
+            [&, rank]
+            {
+                ranks[rank] =
+                    runSpherePour(true, std::make_shared<threadCommunicator>(board, rank, 2));
+            }
+        );
+    }
+    for (std::thread& t : threads) t.join();
+    for (int rank = 0; rank < 2; ++rank)
+    {
+        ASSERT_EQ(ranks[rank].states, general.states) << "rank " << rank;
+        ASSERT_EQ(ranks[rank].histories, general.histories) << "rank " << rank;
     }
 }

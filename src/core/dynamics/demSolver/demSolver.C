@@ -167,6 +167,21 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
 }
 
 
+void demSolver::addPairLoad(const pairLoad& l)
+{
+    rigidBody& A = bodies_[l.a];
+    rigidBody& B = bodies_[l.b];
+    A.contactForce += l.forceA;
+    A.contactTorque += l.torqueA;
+    B.contactForce += l.forceB;
+    B.contactTorque += l.torqueB;
+    A.lubricationForce += l.filmForceA;
+    A.lubricationTorque += l.filmTorqueA;
+    B.lubricationForce += l.filmForceB;
+    B.lubricationTorque += l.filmTorqueB;
+}
+
+
 std::vector<std::pair<int, int>> demSolver::pairsInContact() const
 {
     std::vector<std::pair<int, int>> pairs(history_.size());
@@ -463,13 +478,60 @@ bool demSolver::applyContacts
     int ia, int ib, const contactGeometry& g, contactHistoryTable& next
 )
 {
-    rigidBody& A = bodies_[ia];
-    rigidBody& B = bodies_[ib];
+    const rigidBody& A = bodies_[ia];
+    const rigidBody& B = bodies_[ib];
     if (g.regions.empty())
     {
         return false;
     }
 
+    const double mA = A.mass(), mB = B.mass();
+    const double Reff = effectiveRadius(ia, ib);
+
+    contactInput in;
+    in.material = pairMaterialOf(A.material, B.material);
+    in.effectiveMass =
+        A.dynamic() && B.dynamic() ? mA*mB/(mA + mB) : (A.dynamic() ? mA : mB);
+    in.characteristicLength =
+        settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
+
+    // Overlap depth for laws on spheres: B is a sphere (walls are A)
+    in.overlapDepth = 0;
+    in.effectiveRadius = Reff;
+    if (law_->needsSpheres())
+    {
+        const auto* sb = shapeAs<sphereShape>(*B.geometry);
+        if (const auto* sa = shapeAs<sphereShape>(*A.geometry))
+        {
+            in.overlapDepth =
+                sphereDepth(A.pose.position(), sa->radius(), B.pose.position(), sb->radius());
+            in.effectiveRadius = sa->radius()*sb->radius()/(sa->radius() + sb->radius());
+        }
+        else
+        {
+            in.overlapDepth = sb->radius() - A.geometry->signedDistance(A.pose, B.pose.position());
+            in.effectiveRadius = sb->radius();
+        }
+    }
+    in.flatFaceArea =
+        std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
+    in.pairVolume = g.volume();
+    in.dt = lastDt_;
+
+    const bodyState a{A.pose.position(), A.velocity, A.angularVelocity};
+    const bodyState b{B.pose.position(), B.velocity, B.angularVelocity};
+    applyRegions(ia, a, ib, b, g.regions.data(), g.regions.size(), in, next);
+    return true;
+}
+
+
+void demSolver::applyRegions
+(
+    int ia, const bodyState& A, int ib, const bodyState& B,
+    const contactRegion* regions, size_t nRegions, contactInput& in,
+    contactHistoryTable& next
+)
+{
     // The pair's histories of the last step (pairs come in increasing
     // order: found by the table's cursor), and its entry in the next
     const auto key = std::make_pair(ia, ib);
@@ -477,35 +539,9 @@ bool demSolver::applyContacts
     next.beginPair(key);
     taken_.assign(oldHistory.size(), 0);
 
-    const pairMaterial& pm = pairMaterialOf(A.material, B.material);
-    const double mA = A.mass(), mB = B.mass();
-    const double mEff =
-        A.dynamic() && B.dynamic() ? mA*mB/(mA + mB) : (A.dynamic() ? mA : mB);
-    const double Reff = effectiveRadius(ia, ib);
-    const double lc = settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
-
-    // Overlap depth for laws on spheres: B is a sphere (walls are A)
-    double depth = 0;
-    double RHertz = Reff;
-    if (law_->needsSpheres())
+    for (size_t k = 0; k < nRegions; ++k)
     {
-        const auto* sb = shapeAs<sphereShape>(*B.geometry);
-        depth = sb->radius() - A.geometry->signedDistance(A.pose, B.pose.position());
-        if (const auto* sa = shapeAs<sphereShape>(*A.geometry))
-        {
-            RHertz = sa->radius()*sb->radius()/(sa->radius() + sb->radius());
-        }
-        else
-        {
-            RHertz = sb->radius();
-        }
-    }
-
-    const double flatFace =
-        std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
-    const double pairVolume = g.volume();
-    for (const contactRegion& r : g.regions)
-    {
+        const contactRegion& r = regions[k];
         // The history of the nearest region of the last step, if close
         contactHistory h;
         if (!oldHistory.empty())
@@ -513,12 +549,12 @@ bool demSolver::applyContacts
             const double reach = std::max(settings_.overlap.h, std::sqrt(std::max(r.area, 0.0)));
             int best = -1;
             double bestDist = reach;
-            for (size_t k = 0; k < oldHistory.size(); ++k)
+            for (size_t j = 0; j < oldHistory.size(); ++j)
             {
-                const double d = (oldHistory.first[k].point - r.point).norm();
-                if (!taken_[k] && d <= bestDist)
+                const double d = (oldHistory.first[j].point - r.point).norm();
+                if (!taken_[j] && d <= bestDist)
                 {
-                    best = int(k);
+                    best = int(j);
                     bestDist = d;
                 }
             }
@@ -529,26 +565,19 @@ bool demSolver::applyContacts
             }
         }
 
-        contactInput in;
         in.region = r;
-        in.relativeVelocity = B.pointVelocity(r.point) - A.pointVelocity(r.point);
-        in.effectiveMass = mEff;
-        in.material = pm;
-        in.characteristicLength = lc;
-        in.effectiveRadius = RHertz;
-        in.overlapDepth = depth;
-        in.flatFaceArea = flatFace;
-        in.pairVolume = pairVolume;
-        in.dt = lastDt_;
+        in.relativeVelocity =
+            (B.velocity + B.angularVelocity.cross(r.point - B.position))
+          - (A.velocity + A.angularVelocity.cross(r.point - A.position));
         const contactOutput f = law_->evaluate(in, h);
         h.normal = r.normal;
         h.point = r.point;
         next.add(h);
 
         load_.forceB += f.force;
-        load_.torqueB += (r.point - B.pose.position()).cross(f.force) + f.couple;
+        load_.torqueB += (r.point - B.position).cross(f.force) + f.couple;
         load_.forceA -= f.force;
-        load_.torqueA -= (r.point - A.pose.position()).cross(f.force) + f.couple;
+        load_.torqueA -= (r.point - A.position).cross(f.force) + f.couple;
 
         contactRecord rec;
         rec.a = ia;
@@ -557,7 +586,6 @@ bool demSolver::applyContacts
         rec.force = f;
         contacts_.push_back(rec);
     }
-    return true;
 }
 
 
@@ -932,7 +960,11 @@ void demSolver::computeContacts()
     // pair, are added to the bodies in the order of the pairs once every
     // process's are gathered, so the sums do not depend on who made them
     loads_.clear();
-    for (const auto& p : candidates)
+    if (sphereSweepApplies())
+    {
+        sphereSweep(candidates, next);
+    }
+    else for (const auto& p : candidates)
     {
         if (!owns(p.first, p.second))
         {
@@ -964,16 +996,7 @@ void demSolver::computeContacts()
     }
     for (const pairLoad& l : loads_)
     {
-        rigidBody& A = bodies_[l.a];
-        rigidBody& B = bodies_[l.b];
-        A.contactForce += l.forceA;
-        A.contactTorque += l.torqueA;
-        B.contactForce += l.forceB;
-        B.contactTorque += l.torqueB;
-        A.lubricationForce += l.filmForceA;
-        A.lubricationTorque += l.filmTorqueA;
-        B.lubricationForce += l.filmForceB;
-        B.lubricationTorque += l.filmTorqueB;
+        addPairLoad(l);
     }
     if (lub)
     {

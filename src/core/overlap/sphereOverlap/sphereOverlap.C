@@ -14,16 +14,18 @@ double sphereOverlap::capVolume(double R, double hc)
 }
 
 
-contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, double R2)
+bool sphereOverlap::lensRegion
+(
+    const vec3& c1, double R1, const vec3& c2, double R2, contactRegion& r
+)
 {
-    contactGeometry g;
     const vec3 d12 = c2 - c1;
     const double d = d12.norm();
     if (d >= R1 + R2)
     {
-        return g;
+        return false;
     }
-    contactRegion r;
+    r = contactRegion();
     r.normal = d > 0 ? vec3(d12/d) : vec3(vec3::UnitX());
 
     if (d <= std::abs(R1 - R2))
@@ -34,8 +36,7 @@ contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, d
         r.volume = 4.0/3.0*M_PI*Rs*Rs*Rs;
         r.point = oneSmaller ? c1 : c2;
         r.area = 0;
-        g.regions.push_back(r);
-        return g;
+        return true;
     }
 
     // The discs' plane at distance x from c1 along the centre line
@@ -50,7 +51,44 @@ contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, d
     r.volume = V1 + V2;
     r.point = (V1*(c1 + z1*r.normal) + V2*(c2 - z2*r.normal))/r.volume;
     r.area = M_PI*std::max(0.0, R1*R1 - x*x);
-    g.regions.push_back(r);
+    return true;
+}
+
+
+bool sphereOverlap::capRegion
+(
+    const vec3& p, const vec3& n, const vec3& c, double R, contactRegion& r
+)
+{
+    const double dist = n.dot(c - p);
+    if (dist >= R)
+    {
+        return false;
+    }
+    r = contactRegion();
+    r.normal = n;
+    if (dist <= -R)
+    {
+        r.volume = 4.0/3.0*M_PI*R*R*R;
+        r.point = c;
+        return true;
+    }
+    const double hc = R - dist;
+    r.volume = capVolume(R, hc);
+    r.point = c - 3*std::pow(2*R - hc, 2)/(4*(3*R - hc))*n;
+    r.area = M_PI*(R*R - dist*dist);
+    return true;
+}
+
+
+contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, double R2)
+{
+    contactGeometry g;
+    contactRegion r;
+    if (lensRegion(c1, R1, c2, R2, r))
+    {
+        g.regions.push_back(r);
+    }
     return g;
 }
 
@@ -58,25 +96,11 @@ contactGeometry sphereOverlap::lens(const vec3& c1, double R1, const vec3& c2, d
 contactGeometry sphereOverlap::cap(const vec3& p, const vec3& n, const vec3& c, double R)
 {
     contactGeometry g;
-    const double dist = n.dot(c - p);
-    if (dist >= R)
-    {
-        return g;
-    }
     contactRegion r;
-    r.normal = n;
-    if (dist <= -R)
+    if (capRegion(p, n, c, R, r))
     {
-        r.volume = 4.0/3.0*M_PI*R*R*R;
-        r.point = c;
         g.regions.push_back(r);
-        return g;
     }
-    const double hc = R - dist;
-    r.volume = capVolume(R, hc);
-    r.point = c - 3*std::pow(2*R - hc, 2)/(4*(3*R - hc))*n;
-    r.area = M_PI*(R*R - dist*dist);
-    g.regions.push_back(r);
     return g;
 }
 
