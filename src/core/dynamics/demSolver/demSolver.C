@@ -1,6 +1,7 @@
 #include "demSolver.H"
 #include "rigidBodyIntegrator.H"
 #include "sphereShape.H"
+#include "halfSpaceShape.H"
 #include "convexOverlap.H"
 #include "coreError.H"
 
@@ -272,10 +273,19 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     // Lubrication reaches beyond the contact: boxes grown by half its
     // activation distance meet where the gap may be below it
     const double margin = 0.5*lubricationReach();
+    const bool lub = margin > 0;
+    // Each body's centre, bounding radius and whether it moves, compact:
+    // the pair loops below read these, not the bodies
+    balls_.resize(n);
     for (int i = 0; i < n; ++i)
     {
-        box[i] = bodies_[i].geometry->worldBox(bodies_[i].pose);
+        const rigidBody& b = bodies_[i];
+        box[i] = b.geometry->worldBox(b.pose);
         if (margin > 0) box[i] = box[i].inflated(margin);
+        balls_[i].centre = b.pose.position();
+        balls_[i].radius = b.geometry->boundingRadius();
+        // (a prescribed one too when lubricating: its film is output)
+        balls_[i].moves = b.dynamic() || (lub && b.motion != motionType::fixed);
         if (isWall_[i])
         {
             walls.push_back(i);
@@ -313,40 +323,47 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(neighbours_.size() + walls.size()*others.size());
 
-    // Walls (few, large) against every body that can move (a prescribed
-    // one too when lubricating: its film is output)
-    const bool lub = margin > 0;
-    auto moves = [this, lub](int i)
-    {
-        return bodies_[i].dynamic() || (lub && bodies_[i].motion != motionType::fixed);
-    };
-    for (const int w : walls)
-    {
-        for (const int i : others)
-        {
-            if (moves(i) && box[w].overlaps(box[i]))
-            {
-                pairs.emplace_back(w, i);
-            }
-        }
-    }
-    // Both parts are sorted: merge them. With the pair filter on, a pair
-    // whose bounding spheres are farther apart than both the engine's and
-    // the lubrication's reach is one both filters would reject first
-    // (pairFilter's test 1): dropped here, unless a contact of it is
-    // being carried (reuse_ asks no filter)
+    // With the pair filter on, a pair whose bounding spheres are farther
+    // apart than both the engine's and the lubrication's reach is one both
+    // filters would reject first (pairFilter's test 1): dropped here,
+    // unless a contact of it is being carried (reuse_ asks no filter). A
+    // plane wall's box holds everything: its pairs are dropped so by the
+    // height of the body's centre above it
     const double dropBeyond = settings_.rejectSeparated
         ? std::max(pairFilter::engineReach(engine_->type(), settings_.overlap), 2*margin)
         : std::numeric_limits<double>::infinity();
+
+    // Walls (few, large) against every body that can move
+    for (const int w : walls)
+    {
+        const bool plane = shapeAs<halfSpaceShape>(*bodies_[w].geometry) != nullptr;
+        const vec3 n = bodies_[w].pose.vectorToWorld(vec3::UnitZ());
+        const vec3& p0 = bodies_[w].pose.position();
+        for (const int i : others)
+        {
+            if (!balls_[i].moves || !box[w].overlaps(box[i])) continue;
+            if
+            (
+                plane
+             && n.dot(balls_[i].centre - p0) - balls_[i].radius > dropBeyond
+             && reuse_.find(std::make_pair(w, i)) == reuse_.end()
+            )
+            {
+                ++counters_.droppedBySpheres;
+                continue;
+            }
+            pairs.emplace_back(w, i);
+        }
+    }
+    // Both parts are sorted: merge them
     const size_t nWallPairs = pairs.size();
     for (const auto& p : neighbours_)
     {
         const int i = p.first, j = p.second;
-        if (!moves(i) && !moves(j)) continue;
+        if (!balls_[i].moves && !balls_[j].moves) continue;
         if (!box[i].overlaps(box[j])) continue;
         const double spheres =
-            (bodies_[i].pose.position() - bodies_[j].pose.position()).norm()
-          - bodies_[i].geometry->boundingRadius() - bodies_[j].geometry->boundingRadius();
+            (balls_[i].centre - balls_[j].centre).norm() - balls_[i].radius - balls_[j].radius;
         if (spheres > dropBeyond && reuse_.find(p) == reuse_.end())
         {
             ++counters_.droppedBySpheres;

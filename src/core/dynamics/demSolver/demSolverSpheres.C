@@ -84,6 +84,7 @@ void demSolver::sphereSweep
     in.flatFaceArea = 0;
     in.dt = lastDt_;
     contactRegion r;
+    load_ = pairLoad();
     for (const auto& p : candidates)
     {
         if (!owns(p.first, p.second))
@@ -128,7 +129,8 @@ void demSolver::sphereSweep
             plane ? B.radius : A.radius*B.radius/(A.radius + B.radius);
         in.pairVolume = r.volume;
 
-        load_ = pairLoad();
+        // (the film's loads stay zero: set once above)
+        load_.forceA = load_.torqueA = load_.forceB = load_.torqueB = vec3::Zero();
         load_.a = p.first;
         load_.b = p.second;
         load_.contactsFrom = contacts_.size();
@@ -143,7 +145,13 @@ void demSolver::sphereSweep
         }
         else
         {
-            addPairLoad(load_);
+            // addPairLoad, less the film's zeros
+            rigidBody& bA = bodies_[p.first];
+            rigidBody& bB = bodies_[p.second];
+            bA.contactForce += load_.forceA;
+            bA.contactTorque += load_.torqueA;
+            bB.contactForce += load_.forceB;
+            bB.contactTorque += load_.torqueB;
         }
     }
 }

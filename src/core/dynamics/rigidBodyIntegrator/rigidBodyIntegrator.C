@@ -93,6 +93,13 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     if (b.lockRotation.isZero())
     {
+        // Isotropic body (sphere, cube; as drift decides): L = I w in any
+        // frame, the kick needs no rotation
+        if (I.maxCoeff() - I.minCoeff() <= 1e-12*I.maxCoeff())
+        {
+            b.angularVelocity += T*(halfDt/I.x());
+            return;
+        }
         // Kick the angular momentum, not omega: with the drift's exact
         // momentum-conserving rotor this keeps |L| exact when T = 0. Done in
         // the body frame, where the inertia is diagonal.

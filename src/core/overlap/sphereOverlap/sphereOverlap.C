@@ -8,20 +8,20 @@
 namespace immersedDEM
 {
 
-double sphereOverlap::capVolume(double R, double hc)
-{
-    return M_PI*hc*hc*(3*R - hc)/3;
-}
-
-
 bool sphereOverlap::lensRegion
 (
     const vec3& c1, double R1, const vec3& c2, double R2, contactRegion& r
 )
 {
     const vec3 d12 = c2 - c1;
-    const double d = d12.norm();
-    if (d >= R1 + R2)
+    const double d2 = d12.squaredNorm();
+    const double R12 = R1 + R2;
+    if (d2 >= R12*R12)
+    {
+        return false;
+    }
+    const double d = std::sqrt(d2);
+    if (d >= R12)
     {
         return false;
     }
@@ -40,16 +40,17 @@ bool sphereOverlap::lensRegion
     }
 
     // The discs' plane at distance x from c1 along the centre line
-    const double x = (d*d + R1*R1 - R2*R2)/(2*d);
+    const double x = (d2 + R1*R1 - R2*R2)/(2*d);
     const double h1 = R1 - x;           // cap of ball 1 beyond the plane
     const double h2 = R2 - (d - x);     // cap of ball 2 before the plane
     const double V1 = capVolume(R1, h1);
     const double V2 = capVolume(R2, h2);
     // Centroid of a cap of height hc from its ball's centre: 3(2R-hc)^2/(4(3R-hc))
-    const double z1 = 3*std::pow(2*R1 - h1, 2)/(4*(3*R1 - h1));
-    const double z2 = 3*std::pow(2*R2 - h2, 2)/(4*(3*R2 - h2));
+    const double s1 = 2*R1 - h1, s2 = 2*R2 - h2;
+    const double z1 = 3*s1*s1/(4*(3*R1 - h1));
+    const double z2 = 3*s2*s2/(4*(3*R2 - h2));
     r.volume = V1 + V2;
-    r.point = (V1*(c1 + z1*r.normal) + V2*(c2 - z2*r.normal))/r.volume;
+    r.point = (V1*(c1 + z1*r.normal) + V2*(c2 - z2*r.normal))*(1/r.volume);
     r.area = M_PI*std::max(0.0, R1*R1 - x*x);
     return true;
 }
