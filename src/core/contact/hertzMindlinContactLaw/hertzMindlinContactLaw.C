@@ -16,21 +16,22 @@ contactOutput hertzMindlinContactLaw::evaluate(const contactInput& in, contactHi
     const double vApproach = -in.relativeVelocity.dot(in.region.normal);
     h.approach = std::max(0.0, h.approach + vApproach*in.dt);
 
+    // Stiffnesses Sn = 2 E sqrt(R delta), St = 8 G sqrt(R delta); the
+    // dampings c sqrt(m S) share sqrt(m sqrt(R delta))
     const double root = std::sqrt(R*delta);
-    const double Sn = 2*E*root;
     const double St = 8*G*root;
     const double c = restitutionCalibration::damping(in.material.restitution, 1.5);
+    const double cm = c*std::sqrt(in.effectiveMass*root);
 
     contactOutput out;
     out.normalForce = std::max
     (
         0.0,
-        4.0/3.0*E*std::sqrt(R)*delta*std::sqrt(delta)
-      + c*std::sqrt(in.effectiveMass*Sn)*vApproach
+        4.0/3.0*E*delta*root + cm*std::sqrt(2*E)*vApproach
     );
     out.tangentialForce = tangentialForce
     (
-        in, h, St, c*std::sqrt(in.effectiveMass*St), out.normalForce, out.sliding
+        in, h, St, cm*std::sqrt(8*G), out.normalForce, out.sliding
     );
     out.force = out.normalForce*in.region.normal + out.tangentialForce;
     h.maxNormalForce = std::max(h.maxNormalForce, out.normalForce);

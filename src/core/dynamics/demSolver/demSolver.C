@@ -563,16 +563,17 @@ void demSolver::applyRegions
         contactHistory h;
         if (!oldHistory.empty())
         {
-            const double reach = std::max(settings_.overlap.h, std::sqrt(std::max(r.area, 0.0)));
+            // (squared distances: the reach is max(h, sqrt(area)))
+            const double h0 = settings_.overlap.h;
             int best = -1;
-            double bestDist = reach;
+            double bestDist2 = std::max(h0*h0, std::max(r.area, 0.0));
             for (size_t j = 0; j < oldHistory.size(); ++j)
             {
-                const double d = (oldHistory.first[j].point - r.point).norm();
-                if (!taken_[j] && d <= bestDist)
+                const double d2 = (oldHistory.first[j].point - r.point).squaredNorm();
+                if (!taken_[j] && d2 <= bestDist2)
                 {
                     best = int(j);
-                    bestDist = d;
+                    bestDist2 = d2;
                 }
             }
             if (best >= 0)
