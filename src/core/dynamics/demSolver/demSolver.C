@@ -346,7 +346,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
             (
                 plane
              && n.dot(balls_[i].centre - p0) - balls_[i].radius > dropBeyond
-             && reuse_.find(std::make_pair(w, i)) == reuse_.end()
+             && (reuse_.empty() || reuse_.find(std::make_pair(w, i)) == reuse_.end())
             )
             {
                 ++counters_.droppedBySpheres;
@@ -364,7 +364,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
         if (!box[i].overlaps(box[j])) continue;
         const double spheres =
             (balls_[i].centre - balls_[j].centre).norm() - balls_[i].radius - balls_[j].radius;
-        if (spheres > dropBeyond && reuse_.find(p) == reuse_.end())
+        if (spheres > dropBeyond && (reuse_.empty() || reuse_.find(p) == reuse_.end()))
         {
             ++counters_.droppedBySpheres;
             continue;
