@@ -115,6 +115,99 @@ struct runResult
 };
 
 
+//- Body b at p moved by up to +-jitter per axis, turned at random, with
+//  velocities up to v and w per axis (drawn in this order from gen)
+void placeAtRandom
+(
+    rigidBody& b, const vec3& p, double jitter, double v, double w, std::mt19937& gen
+)
+{
+    const vec3 x = p + test::randomVec(gen, -jitter, jitter);
+    b.pose = bodyPose(x, test::randomQuat(gen));
+    b.velocity = test::randomVec(gen, -v, v);
+    b.angularVelocity = test::randomVec(gen, -w, w);
+}
+
+
+//- Every body's state, flat: pose, velocities, contact force and torque,
+//  film force
+void appendStates(const demSolver& dem, std::vector<double>& out)
+{
+    for (const rigidBody& b : dem.bodies())
+    {
+        const vec3 x = b.pose.position();
+        const quat& q = b.pose.orientation();
+        out.insert
+        (
+            out.end(),
+            {
+                x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(),
+                b.velocity.x(), b.velocity.y(), b.velocity.z(),
+                b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z(),
+                b.contactForce.x(), b.contactForce.y(), b.contactForce.z(),
+                b.contactTorque.x(), b.contactTorque.y(), b.contactTorque.z(),
+                b.lubricationForce.x(), b.lubricationForce.y(), b.lubricationForce.z()
+            }
+        );
+    }
+}
+
+
+//- Every contact history, flat, with its pair
+void appendHistories(const demSolver& dem, std::vector<double>& out)
+{
+    for (const auto& h : dem.histories())
+    {
+        out.insert(out.end(), {double(h.first.first), double(h.first.second)});
+        for (const contactHistory& c : h.second)
+        {
+            out.insert
+            (
+                out.end(),
+                {
+                    c.tangentialSpring.x(), c.tangentialSpring.y(), c.tangentialSpring.z(),
+                    c.point.x(), c.normal.z(), c.approach, c.maxNormalForce
+                }
+            );
+        }
+    }
+}
+
+
+//- n advances of dt, body 'gone' removed before the middle one; the
+//  states (and the contact records, if asked) after each, the histories
+//  at the end
+void advanceAndRecord
+(
+    demSolver& dem, int n, double dt, int gone, bool records, runResult& r
+)
+{
+    for (int a = 0; a < n; ++a)
+    {
+        if (a == n/2)
+        {
+            dem.removeBodies({gone});
+        }
+        dem.advance(dt);
+        appendStates(dem, r.states);
+        for (const contactRecord& c : dem.contacts())
+        {
+            if (!records) break;
+            r.states.insert
+            (
+                r.states.end(),
+                {
+                    double(c.a), double(c.b), c.region.volume, c.region.point.x(),
+                    c.region.normal.y(), c.force.normalForce, c.force.tangentialForce.z()
+                }
+            );
+        }
+        r.contacts += long(dem.contacts().size());
+    }
+    appendHistories(dem, r.histories);
+}
+
+
 //- Twelve bodies (non-convex tori, icosahedra measured on the octree,
 //  spheres) dropped in a tank of wall patches, in a liquid; body 5 removed
 //  half way
@@ -159,59 +252,16 @@ runResult runPile(std::shared_ptr<demCommunicator> comm)
           : std::shared_ptr<const shape>(ball);
         rigidBody b("b" + std::to_string(k), g, 2500);
         const int i = k % 2, j = (k/2) % 2, l = k/4;
-        b.pose = bodyPose
+        placeAtRandom
         (
-            vec3(0.011 + 0.018*i, 0.011 + 0.018*j, 0.006 + 0.0085*l)
-          + test::randomVec(gen, -0.0005, 0.0005),
-            test::randomQuat(gen)
+            b, vec3(0.011 + 0.018*i, 0.011 + 0.018*j, 0.006 + 0.0085*l), 0.0005, 0.05, 5, gen
         );
-        b.velocity = test::randomVec(gen, -0.05, 0.05);
-        b.angularVelocity = test::randomVec(gen, -5, 5);
         b.fluidCellSize = 0.002;
         dem.addBody(b);
     }
 
     runResult r;
-    for (int a = 0; a < 10; ++a)
-    {
-        if (a == 5)
-        {
-            dem.removeBodies({5});
-        }
-        dem.advance(0.002);
-        for (const rigidBody& b : dem.bodies())
-        {
-            const vec3 x = b.pose.position();
-            const quat& q = b.pose.orientation();
-            r.states.insert
-            (
-                r.states.end(),
-                {
-                    x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(),
-                    b.velocity.x(), b.velocity.y(), b.velocity.z(),
-                    b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z(),
-                    b.contactForce.x(), b.contactForce.y(), b.contactForce.z(),
-                    b.lubricationForce.x(), b.lubricationForce.y(), b.lubricationForce.z()
-                }
-            );
-        }
-        r.contacts += long(dem.contacts().size());
-    }
-    for (const auto& h : dem.histories())
-    {
-        r.histories.insert(r.histories.end(), {double(h.first.first), double(h.first.second)});
-        for (const contactHistory& c : h.second)
-        {
-            r.histories.insert
-            (
-                r.histories.end(),
-                {
-                    c.tangentialSpring.x(), c.tangentialSpring.y(), c.tangentialSpring.z(),
-                    c.point.x(), c.approach, c.maxNormalForce
-                }
-            );
-        }
-    }
+    advanceAndRecord(dem, 10, 0.002, 5, false, r);
     r.pairEvaluations = dem.work().pairEvaluations;
     r.reusedEvaluations = dem.work().reusedEvaluations;
     r.lubricatedPairs = dem.work().lubricatedPairs;
@@ -364,69 +414,15 @@ runResult runSpherePour(bool sweep, std::shared_ptr<demCommunicator> comm)
     {
         rigidBody b("s" + std::to_string(k), k % 3 ? small : large, 2500, k % 2);
         const int i = k % 5, j = (k/5) % 4, l = k/20;
-        b.pose = bodyPose
+        placeAtRandom
         (
-            vec3(0.004 + 0.0055*i, 0.005 + 0.0065*j, 0.018 + 0.006*l)
-          + test::randomVec(gen, -0.0004, 0.0004),
-            test::randomQuat(gen)
+            b, vec3(0.004 + 0.0055*i, 0.005 + 0.0065*j, 0.018 + 0.006*l), 0.0004, 0.1, 20, gen
         );
-        b.velocity = test::randomVec(gen, -0.1, 0.1);
-        b.angularVelocity = test::randomVec(gen, -20, 20);
         dem.addBody(b);
     }
 
     runResult r;
-    for (int a = 0; a < 12; ++a)
-    {
-        if (a == 6)
-        {
-            dem.removeBodies({9});
-        }
-        dem.advance(0.015);
-        for (const rigidBody& b : dem.bodies())
-        {
-            const vec3 x = b.pose.position();
-            const quat& q = b.pose.orientation();
-            r.states.insert
-            (
-                r.states.end(),
-                {
-                    x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(),
-                    b.velocity.x(), b.velocity.y(), b.velocity.z(),
-                    b.angularVelocity.x(), b.angularVelocity.y(), b.angularVelocity.z(),
-                    b.contactForce.x(), b.contactForce.y(), b.contactForce.z(),
-                    b.contactTorque.x(), b.contactTorque.y(), b.contactTorque.z()
-                }
-            );
-        }
-        for (const contactRecord& c : dem.contacts())
-        {
-            r.states.insert
-            (
-                r.states.end(),
-                {
-                    double(c.a), double(c.b), c.region.volume, c.region.point.x(),
-                    c.region.normal.y(), c.force.normalForce, c.force.tangentialForce.z()
-                }
-            );
-        }
-        r.contacts += long(dem.contacts().size());
-    }
-    for (const auto& h : dem.histories())
-    {
-        r.histories.insert(r.histories.end(), {double(h.first.first), double(h.first.second)});
-        for (const contactHistory& c : h.second)
-        {
-            r.histories.insert
-            (
-                r.histories.end(),
-                {
-                    c.tangentialSpring.x(), c.tangentialSpring.y(), c.tangentialSpring.z(),
-                    c.point.x(), c.normal.z(), c.approach, c.maxNormalForce
-                }
-            );
-        }
-    }
+    advanceAndRecord(dem, 12, 0.015, 9, true, r);
     r.pairEvaluations = dem.work().sphereSweeps;
     return r;
 }

@@ -145,13 +145,7 @@ void demSolver::sphereSweep
         }
         else
         {
-            // addPairLoad, less the film's zeros
-            rigidBody& bA = bodies_[p.first];
-            rigidBody& bB = bodies_[p.second];
-            bA.contactForce += load_.forceA;
-            bA.contactTorque += load_.torqueA;
-            bB.contactForce += load_.forceB;
-            bB.contactTorque += load_.torqueB;
+            addPairLoad(load_);
         }
     }
 }
