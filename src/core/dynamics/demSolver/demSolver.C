@@ -507,8 +507,7 @@ bool demSolver::applyContacts
 
     contactInput in;
     in.material = pairMaterialOf(A.material, B.material);
-    in.effectiveMass =
-        A.dynamic() && B.dynamic() ? mA*mB/(mA + mB) : (A.dynamic() ? mA : mB);
+    in.effectiveMass = effectiveMass(mA, A.dynamic(), mB, B.dynamic());
     in.characteristicLength =
         settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
 

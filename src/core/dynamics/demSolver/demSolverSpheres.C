@@ -6,12 +6,12 @@ Description
     filter, calls the overlap engine through its interface (a vector of
     regions per pair), and reads each body's mass, radius and state through
     the shape's virtual functions and the whole 640-byte body; for a pour of
-    1,000 spheres that was 80% of the run. Here every body's position,
+    1,000 spheres that was about 80% of the run. Here every body's position,
     velocities, radius, mass and plane normal are copied once per sweep into
     one compact array, and each pair's lens or cap is computed in place.
     The law, the histories, the loads and the records are those of the
     general loop (applyRegions), so the results are the same bit for bit
-    (test demSolver.sphereSweepIsTheGeneralLoop).
+    (test demProcesses.sphereSweepIsTheGeneralLoopBitForBit).
 \*---------------------------------------------------------------------------*/
 
 #include "demSolver.H"
@@ -117,9 +117,7 @@ void demSolver::sphereSweep
         // As applyContacts: the depth from A's signed distance of B's
         // centre, the Hertz radius of the two spheres (B's on a plane)
         in.material = pairMaterialOf(A.material, B.material);
-        in.effectiveMass =
-            A.dynamic && B.dynamic
-          ? A.mass*B.mass/(A.mass + B.mass) : (A.dynamic ? A.mass : B.mass);
+        in.effectiveMass = effectiveMass(A.mass, A.dynamic, B.mass, B.dynamic);
         in.overlapDepth =
             plane
           ? B.radius
