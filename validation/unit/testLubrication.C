@@ -398,3 +398,146 @@ TEST(lubrication, filmPointMovesContinuouslyAsAFaceTurns)
     }
     EXPECT_LT(previous, R);
 }
+
+
+TEST(lubrication, footprintOfAFlatFaceFadesAsItTurns)
+{
+    // A cube's face over a plane: its footprint is the face (area 4 R^2,
+    // area moments R^2/3 along the face, none across); turned until its
+    // far edge is half the band higher, the triangles (each has a corner
+    // on that edge) count half; turned further, nothing. A facetted
+    // sphere's lowest facets are no flat face
+    const double R = 0.005, g = 3e-4, cap = 5e-3;
+    const auto c = cube(R);
+    auto plane = std::make_shared<halfSpaceShape>();
+    const bodyPose floor = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
+    auto over = [&](const shape& s, double angle)
+    {
+        const bodyPose p(vec3(0, 0, R + g), quat(Eigen::AngleAxisd(angle, vec3::UnitY())));
+        return lubrication::approach(*plane, floor, s, p, cap);
+    };
+    const closestApproach flat = over(*c, 0);
+    ASSERT_TRUE(flat.found);
+    EXPECT_NEAR(flat.footprintArea, 4*R*R, 1e-9*R*R);
+    EXPECT_NEAR(flat.footprintSpread(0, 0), R*R/3, 1e-9*R*R);
+    EXPECT_NEAR(flat.footprintSpread(1, 1), R*R/3, 1e-9*R*R);
+    EXPECT_NEAR(flat.footprintSpread(2, 2), 0, 1e-12*R*R);
+    EXPECT_NEAR(flat.footprintSpread(0, 1), 0, 1e-12*R*R);
+
+    // The band here is the gap at the lowest corner (larger than 1e-2 of
+    // the bounding radius); each triangle has a corner on the far edge
+    const double angle = 0.015;
+    const closestApproach turned = over(*c, angle);
+    const double weight = 1 - 2*R*std::sin(angle)/turned.gap;
+    EXPECT_GT(weight, 0.2);
+    EXPECT_NEAR(turned.footprintArea, weight*4*R*R, 1e-6*R*R);
+    EXPECT_EQ(over(*c, 0.04).footprintArea, 0);
+
+    const triangleMeshShape ball(primitiveMeshes::icosphere(R, 3), "ball");
+    EXPECT_EQ(over(ball, 0.3).footprintArea, 0);
+}
+
+
+TEST(lubrication, flatFilmOfADisc)
+{
+    // The Reynolds equation's squeeze film of a disc of radius a at gap
+    // h: normal 3 pi mu a^4/(2 h^3), tilt pi mu a^6/(8 h^3); less their
+    // values at hAct, held below the roughness, none beyond hAct
+    const double mu = 1e-3, a = 0.004, h = 2e-4, hAct = 4e-3, hR = 1e-5;
+    const double film = 1/(h*h*h) - 1/(hAct*hAct*hAct);
+    const auto disc = lubrication::flatCoefficients(mu, M_PI*a*a, a*a/4, a*a/4, h, hAct, hR);
+    EXPECT_NEAR(disc.normal, 1.5*M_PI*mu*std::pow(a, 4)*film, 1e-12*disc.normal);
+    EXPECT_NEAR(disc.tilt1, M_PI*mu*std::pow(a, 6)/8*film, 1e-12*disc.tilt1);
+    EXPECT_NEAR(disc.tilt2, disc.tilt1, 1e-12*disc.tilt1);
+    const auto held = lubrication::flatCoefficients(mu, M_PI*a*a, a*a/4, a*a/4, 0.1*hR, hAct, hR);
+    EXPECT_NEAR(held.normal/disc.normal, (1/std::pow(hR, 3) - 1/std::pow(hAct, 3))/film, 1e-9);
+    EXPECT_EQ(lubrication::flatCoefficients(mu, M_PI*a*a, a*a/4, a*a/4, hAct, hAct, hR).normal, 0);
+    // A long footprint resists tilting about its length far more than
+    // about its width (the arm is across the axis)
+    const auto strip = lubrication::flatCoefficients(mu, 4*a*a, a*a/3, a*a/48, h, hAct, hR);
+    EXPECT_GT(strip.tilt2, 10*strip.tilt1);
+}
+
+
+namespace
+{
+
+//- Two 10 mm cubes face to face along x, 0.1 mm apart, in a fluid of
+//  viscosity mu (no contact)
+struct facingCubes
+{
+    demSolver dem;
+    int a = -1, b = -1;
+    static constexpr double R = 0.005, gap = 1e-4;
+
+    explicit facingCubes(double mu)
+    :
+        dem({contactMaterial{"glass", 6.3e10, 0.24, 1, 0}}, demSettings())
+    {
+        for (const double side : {-1.0, 1.0})
+        {
+            rigidBody c(side < 0 ? "a" : "b", cube(R), 2500);
+            c.pose = at(vec3(side*(R + 0.5*gap), 0, 0));
+            c.fluidCellSize = 3.125e-3;
+            (side < 0 ? a : b) = dem.addBody(c);
+        }
+        dem.setFluidViscosity(mu);
+    }
+    rigidBody& A() { return dem.bodies()[a]; }
+    rigidBody& B() { return dem.bodies()[b]; }
+};
+
+} // End anonymous namespace
+
+
+TEST(lubrication, facingCubesSqueezeAndTiltLikePlates)
+{
+    // Approaching: the normal film is the plates' (the footprint's), far
+    // above the equivalent spheres' 6 pi mu R*^2/h
+    {
+        facingCubes f(1e-3);
+        f.B().velocity = vec3(-1e-3, 0, 0);
+        f.dem.step(1e-6);
+        const double hAct = 1.7*3.125e-3;
+        const auto plates = lubrication::flatCoefficients
+        (
+            1e-3, 4*f.R*f.R, f.R*f.R/3, f.R*f.R/3, f.gap, hAct, 0
+        );
+        const double Fx = f.B().lubricationForce.x();
+        EXPECT_NEAR(Fx, plates.normal*1e-3, 0.01*plates.normal*1e-3);
+        const double Rstar = 0.5*std::cbrt(3*8*std::pow(f.R, 3)/(4*M_PI));
+        EXPECT_GT(Fx, 100*6*M_PI*1e-3*Rstar*Rstar/f.gap*1e-3);
+    }
+    // Counter-rotating about y (the pair tilting open at the bottom, as
+    // two cubes falling side by side turn): the tilt film takes the
+    // relative tilting out (at most all of it in a step); about the
+    // normal (x) they twist freely
+    {
+        facingCubes f(1e-2);
+        f.A().angularVelocity = vec3(0.1, 0.1, 0);
+        f.B().angularVelocity = vec3(-0.1, -0.1, 0);
+        const double dt = 1e-5, hAct = 1.7*3.125e-3;
+        f.dem.step(dt);
+        const auto plates = lubrication::flatCoefficients
+        (
+            1e-2, 4*f.R*f.R, f.R*f.R/3, f.R*f.R/3, f.gap, hAct, 0
+        );
+        const double inv = 2/f.A().inertia()(1);
+        const double expected = 0.2*(1 - plates.tilt1*inv*dt);
+        const double relative = f.A().angularVelocity.y() - f.B().angularVelocity.y();
+        EXPECT_LT(expected, 0.99*0.2);
+        EXPECT_NEAR(relative, expected, 0.02*(0.2 - expected));
+        EXPECT_NEAR(f.A().angularVelocity.x(), 0.1, 1e-9);
+        EXPECT_NEAR(f.B().angularVelocity.x(), -0.1, 1e-9);
+        // In 0.01 s the tilting has gone
+        f.dem.advance(0.01);
+        EXPECT_LT(std::abs(f.A().angularVelocity.y() - f.B().angularVelocity.y()), 1e-3*0.2);
+    }
+    // Without fluid, nothing
+    {
+        facingCubes f(0);
+        f.A().angularVelocity = vec3(0, 0.1, 0);
+        f.dem.step(1e-5);
+        EXPECT_NEAR(f.A().angularVelocity.y(), 0.1, 1e-12);
+    }
+}

@@ -39,6 +39,32 @@ closestApproach sphereAgainst
 }
 
 
+//- The footprint of a mesh's face turned towards the other body (d in
+//  the mesh's frame, low its least corner along d) into a, if smaller
+//  than the one a holds. The band is at least the gap: a tilted film
+//  carries its pressure where the gap is within about twice its least
+bool setFootprint
+(
+    closestApproach& a, const triangleBVH& T, const bodyPose& p,
+    const vec3& d, double low, double band
+)
+{
+    const triangleBVH::footprint f = T.footprintBelow(d, low, band);
+    if (!(f.area > 0))
+    {
+        return false;
+    }
+    if (a.footprintArea > 0 && a.footprintArea <= f.area)
+    {
+        return true;
+    }
+    const mat3& R = p.rotation();
+    a.footprintArea = f.area;
+    a.footprintSpread = R*f.spread*R.transpose();
+    return true;
+}
+
+
 //- A plane (A) and a mesh (B): the lowest corners of B over the plane
 closestApproach planeAgainstMesh
 (
@@ -69,6 +95,7 @@ closestApproach planeAgainstMesh
     }
     a.pointB = pB.toWorld(mean);
     a.pointA = a.pointB - n.dot(a.pointB - pP.position())*n;
+    setFootprint(a, tB, pB, nB, low, std::max(band, a.gap));
     return a;
 }
 
@@ -86,6 +113,29 @@ double lubrication::coefficient
     }
     const double g = std::max(h, std::min(hRough, hAct));
     return 6*M_PI*mu*R*R*(1/g - 1/hAct);
+}
+
+
+lubrication::flatFilm lubrication::flatCoefficients
+(
+    double mu, double area, double s1, double s2, double h, double hAct,
+    double hRough
+)
+{
+    flatFilm f;
+    if (!(h < hAct) || !(hAct > 0) || !(area > 0) || !(s1 > 0) || !(s2 > 0))
+    {
+        return f;
+    }
+    const double g = std::max(h, std::min(hRough, hAct));
+    const double film = M_PI*mu*(1/(g*g*g) - 1/(hAct*hAct*hAct));
+    const double r = std::sqrt(std::sqrt(s1/s2));
+    const double a1 = std::sqrt(area/M_PI)*r, a2 = std::sqrt(area/M_PI)/r;
+    const double a1s = a1*a1, a2s = a2*a2;
+    f.normal = 3*film*a1s*a1*a2s*a2/(a1s + a2s);
+    f.tilt1 = film*a1*a2s*a2/(2/a1s + 6/a2s);
+    f.tilt2 = film*a2*a1s*a1/(2/a2s + 6/a1s);
+    return f;
 }
 
 
@@ -202,21 +252,29 @@ closestApproach lubrication::approach
         const double band =
             std::min(0.1*cap, 1e-2*std::min(A.boundingRadius(), B.boundingRadius()));
         vec3 sum = vec3::Zero();
-        int parts = 0;
+        int parts = 0, flat = 0;
         const bool wallA = shapeAs<wallMeshShape>(A) != nullptr;
         const bool wallB = shapeAs<wallMeshShape>(B) != nullptr;
         auto face = [&](const triangleBVH& T, const bodyPose& p, const vec3& dir, const vec3& shift)
         {
             const vec3 d = p.vectorToBody(dir);
+            const double low = T.minAlong(d);
             vec3 mean;
-            if (T.meanCornerBelow(d, T.minAlong(d), band, mean))
+            if (T.meanCornerBelow(d, low, band, mean))
             {
                 sum += p.toWorld(mean) + shift;
                 ++parts;
             }
+            flat += setFootprint(a, T, p, d, low, std::max(band, a.gap));
         };
         if (!wallB) face(*tB, pB, a.normal, -0.5*a.gap*a.normal);
         if (!wallA) face(*tA, pA, -a.normal, 0.5*a.gap*a.normal);
+        if (flat < (wallA || wallB ? 1 : 2))
+        {
+            // A face against an edge or a corner: no parallel film
+            a.footprintArea = 0;
+            a.footprintSpread = mat3::Zero();
+        }
         if (parts == (wallA || wallB ? 1 : 2))
         {
             const vec3 middle = sum/double(parts);

@@ -5,6 +5,8 @@
 #include "convexOverlap.H"
 #include "coreError.H"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -681,7 +683,13 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
         ++counters_.reusedFilms;
         if (gap < hAct)
         {
-            applyFilm(A, B, 0.5*(pa + pb), n, gap, f.radius, hAct, ls.roughness*effectiveRadius(ia, ib));
+            const mat3& RA = A.pose.rotation();
+            applyFilm
+            (
+                A, B, 0.5*(pa + pb), n, gap, f.radius, hAct,
+                ls.roughness*effectiveRadius(ia, ib), f.footprintArea,
+                RA*f.footprintSpread*RA.transpose()
+            );
         }
         return;
     }
@@ -751,16 +759,74 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
         f.normal = A.pose.vectorToBody(n);
         f.gap = c.gap;
         f.radius = R;
+        f.footprintArea = c.footprintArea;
+        f.footprintSpread =
+            A.pose.rotation().transpose()*c.footprintSpread*A.pose.rotation();
         f.count = 0;
     }
-    applyFilm(A, B, x, n, c.gap, R, hAct, ls.roughness*Rcap);
+    applyFilm
+    (
+        A, B, x, n, c.gap, R, hAct, ls.roughness*Rcap, c.footprintArea,
+        c.footprintSpread
+    );
+}
+
+
+demSolver::footprintAxes::footprintAxes(const vec3& n, const mat3& spread)
+{
+    // The footprint's principal directions in the tangent plane
+    const vec3 a = std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY();
+    const vec3 t1 = n.cross(a).normalized();
+    const vec3 t2 = n.cross(t1);
+    const double s12 = 0.5*(t1.dot(spread*t2) + t2.dot(spread*t1));
+    Eigen::Matrix2d m;
+    m << t1.dot(spread*t1), s12, s12, t2.dot(spread*t2);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
+    for (int i = 0; i < 2; ++i)
+    {
+        e[i] = eig.eigenvectors()(0, i)*t1 + eig.eigenvectors()(1, i)*t2;
+        s[i] = eig.eigenvalues()(i);
+    }
+}
+
+
+vec3 demSolver::tiltFilmTorque
+(
+    const rigidBody& A, const rigidBody& B, const footprintAxes& axes,
+    const lubrication::flatFilm& flat, double dt
+) const
+{
+    const vec3* e = axes.e;
+    double c[2] = {flat.tilt1, flat.tilt2};
+    const vec3 w = B.angularVelocity - A.angularVelocity;
+    vec3 T = vec3::Zero();
+    for (int i = 0; i < 2; ++i)
+    {
+        // At most the whole relative tilting in one step, as the normal
+        // film (the pair's moment of inertia about e)
+        double inv = 0;
+        for (const rigidBody* b : {&A, &B})
+        {
+            if (b->dynamic())
+            {
+                inv += e[i].dot(b->worldInertia().inverse()*e[i]);
+            }
+        }
+        if (inv > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
+        {
+            c[i] = std::min(c[i], 1/(inv*dt));
+        }
+        T -= c[i]*w.dot(e[i])*e[i];
+    }
+    return T;
 }
 
 
 void demSolver::applyFilm
 (
     const rigidBody& A, const rigidBody& B, const vec3& x, const vec3& n,
-    double gap, double R, double hAct, double hRough
+    double gap, double R, double hAct, double hRough,
+    double footprintArea, const mat3& footprintSpread
 )
 {
     double coeff = lubrication::coefficient
@@ -779,6 +845,20 @@ void demSolver::applyFilm
     const double invNominal =
         inverseMassAlong(A, x, n, A.fluid.nominalAddedMass)
       + inverseMassAlong(B, x, n, B.fluid.nominalAddedMass);
+    // Nearly parallel flat faces: the squeeze film of their footprint
+    // when stronger than the curvature's (the 1/h^3 of parallel plates)
+    footprintAxes axes;
+    lubrication::flatFilm flat;
+    if (footprintArea > 0)
+    {
+        axes = footprintAxes(n, footprintSpread);
+        flat = lubrication::flatCoefficients
+        (
+            settings_.lubrication.viscosity, footprintArea, axes.s[0],
+            axes.s[1], gap, hAct, hRough
+        );
+        coeff = std::max(coeff, flat.normal);
+    }
     if (invMass > 0)
     {
         coeff *= invNominal/invMass;
@@ -795,6 +875,12 @@ void demSolver::applyFilm
     load_.filmTorqueB += (x - B.pose.position()).cross(F);
     load_.filmForceA -= F;
     load_.filmTorqueA -= (x - A.pose.position()).cross(F);
+    if (flat.tilt1 > 0 || flat.tilt2 > 0)
+    {
+        const vec3 T = tiltFilmTorque(A, B, axes, flat, dt);
+        load_.filmTorqueB += T;
+        load_.filmTorqueA -= T;
+    }
     load_.film = true;
     ++counters_.lubricatedPairs;
 }
