@@ -302,23 +302,35 @@ mat3 lubrication::curvatureNear(const shape& S, const bodyPose& p, const vec3& x
 }
 
 
+lubrication::tangentAxes lubrication::principalInPlane(const mat3& M, const vec3& n)
+{
+    // A basis of the plane
+    const vec3 a = std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY();
+    const vec3 t1 = n.cross(a).normalized();
+    const vec3 t2 = n.cross(t1);
+    const double m12 = 0.5*(t1.dot(M*t2) + t2.dot(M*t1));
+    Eigen::Matrix2d m;
+    m << t1.dot(M*t1), m12, m12, t2.dot(M*t2);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
+    tangentAxes axes;
+    for (int i = 0; i < 2; ++i)
+    {
+        axes.e[i] = eig.eigenvectors()(0, i)*t1 + eig.eigenvectors()(1, i)*t2;
+        axes.s[i] = eig.eigenvalues()(i);
+    }
+    return axes;
+}
+
+
 double lubrication::gapRadius
 (
     const mat3& KA, const mat3& KB, const vec3& n, double Rcap
 )
 {
-    // A basis of the tangent plane
-    const vec3 a = std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY();
-    const vec3 t1 = n.cross(a).normalized();
-    const vec3 t2 = n.cross(t1);
-    const mat3 K = KA + KB;
-    Eigen::Matrix2d k;
-    k << t1.dot(K*t1), 0.5*(t1.dot(K*t2) + t2.dot(K*t1)),
-         0.5*(t1.dot(K*t2) + t2.dot(K*t1)), t2.dot(K*t2);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(k, Eigen::EigenvaluesOnly);
+    const tangentAxes k = principalInPlane(KA + KB, n);
     const double kMin = 1/Rcap;
-    const double k1 = std::max(eig.eigenvalues()(0), kMin);
-    const double k2 = std::max(eig.eigenvalues()(1), kMin);
+    const double k1 = std::max(k.s[0], kMin);
+    const double k2 = std::max(k.s[1], kMin);
     return 1/std::sqrt(k1*k2);
 }
 

@@ -5,8 +5,6 @@
 #include "convexOverlap.H"
 #include "coreError.H"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -772,24 +770,6 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
 }
 
 
-demSolver::footprintAxes::footprintAxes(const vec3& n, const mat3& spread)
-{
-    // The footprint's principal directions in the tangent plane
-    const vec3 a = std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY();
-    const vec3 t1 = n.cross(a).normalized();
-    const vec3 t2 = n.cross(t1);
-    const double s12 = 0.5*(t1.dot(spread*t2) + t2.dot(spread*t1));
-    Eigen::Matrix2d m;
-    m << t1.dot(spread*t1), s12, s12, t2.dot(spread*t2);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
-    for (int i = 0; i < 2; ++i)
-    {
-        e[i] = eig.eigenvectors()(0, i)*t1 + eig.eigenvectors()(1, i)*t2;
-        s[i] = eig.eigenvalues()(i);
-    }
-}
-
-
 double demSolver::filmShare(const rigidBody& A, const rigidBody& B) const
 {
     int n = 1;
@@ -807,8 +787,9 @@ double demSolver::filmShare(const rigidBody& A, const rigidBody& B) const
 
 vec3 demSolver::tiltFilmTorque
 (
-    const rigidBody& A, const rigidBody& B, const footprintAxes& axes,
-    const lubrication::flatFilm& flat, double dt
+    const rigidBody& A, const rigidBody& B,
+    const lubrication::tangentAxes& axes, const lubrication::flatFilm& flat,
+    double dt
 ) const
 {
     const vec3* e = axes.e;
@@ -862,11 +843,11 @@ void demSolver::applyFilm
       + inverseMassAlong(B, x, n, B.fluid.nominalAddedMass);
     // Nearly parallel flat faces: the squeeze film of their footprint
     // when stronger than the curvature's (the 1/h^3 of parallel plates)
-    footprintAxes axes;
+    lubrication::tangentAxes axes;
     lubrication::flatFilm flat;
     if (footprintArea > 0)
     {
-        axes = footprintAxes(n, footprintSpread);
+        axes = lubrication::principalInPlane(footprintSpread, n);
         flat = lubrication::flatCoefficients
         (
             settings_.lubrication.viscosity, footprintArea, axes.s[0],
