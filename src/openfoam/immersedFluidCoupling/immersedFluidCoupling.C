@@ -59,6 +59,7 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     addedMass_.setSize(n);
     addedInertia_.setSize(n);
     reportedAddedMass_.setSize(n, 0);
+    previousContact_.setSize(n, false);
     for (label i = 0; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -362,15 +363,15 @@ void Foam::immersedFluidCoupling::fluidLoads
     List<vector> P, PM, M, L;
     fluidSums(projection, dem, U, deltaT, P, PM, M, L);
     auto& bodies = dem.bodies();
-    // With impactInertia, bodies in contact at the end of the last DEM
-    // step (pairs with a contact history) keep the damper (fluidLoad.H);
-    // the others carry their added mass as inertia, so that an impact
-    // within the next step keeps its rebound
-    List<bool> touching(bodies.size(), !impactInertia);
+    // Bodies in contact at the end of the last DEM step (pairs with a
+    // contact history). With impactInertia they keep the damper
+    // (fluidLoad.H) and the others carry their added mass as inertia, so
+    // that an impact within the next step keeps its rebound
+    List<bool> inContact(bodies.size(), false);
     for (const auto& p : dem.pairsInContact())
     {
-        if (p.first < touching.size()) touching[p.first] = true;
-        if (p.second < touching.size()) touching[p.second] = true;
+        if (p.first < inContact.size()) inContact[p.first] = true;
+        if (p.second < inContact.size()) inContact[p.second] = true;
     }
     forAll(M, i)
     {
@@ -424,12 +425,24 @@ void Foam::immersedFluidCoupling::fluidLoads
             );
             noteAddedMass(i, ma/unitMass, Ca, b.name);
         }
+        // A body that landed within the step (in contact now, free of
+        // contacts at the last step's end) changed its velocity by an
+        // impact, which does not go on: its course is not extrapolated
+        // from it (zero reference accelerations). Extrapolated, the
+        // landing's deceleration became a course upwards, and the damper
+        // pulled the body off what it had landed on (src/README.md,
+        // coupling). A body leaving a contact keeps its reference: with
+        // impactInertia, m_a a_ref meets the fluid's answer to the push
+        const bool landed = inContact[i] && !previousContact_[i];
         b.fluid = fluidLoad::stabilised
         (
-            F, T, ma, Ca*unitMass, !touching[i], Ia, deltaT, dem.time(),
-            b.velocity, c(previousVelocity_[i]),
-            b.angularVelocity, c(previousAngularVelocity_[i])
+            F, T, ma, Ca*unitMass, impactInertia && !inContact[i], Ia,
+            deltaT, dem.time(),
+            b.velocity, landed ? b.velocity : c(previousVelocity_[i]),
+            b.angularVelocity,
+            landed ? b.angularVelocity : c(previousAngularVelocity_[i])
         );
+        previousContact_[i] = inContact[i];
         previousVelocity_[i] = v(b.velocity);
         previousAngularVelocity_[i] = v(b.angularVelocity);
         innerMomentum_[i] = M[i];
@@ -510,6 +523,7 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(addedMass_, measuredAddedMass());
     remap(addedInertia_, measuredAddedMass());
     remap(reportedAddedMass_, scalar(0));
+    remap(previousContact_, false);
     for (label i = firstNew; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -546,6 +560,7 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("previousAngularVelocity", previousAngularVelocity_[i]);
     os.writeEntry("innerMomentum", innerMomentum_[i]);
     os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
+    os.writeEntry("inContact", previousContact_[i]);
     measuredAddedMass::fields(addedMass_[i], measuredWriter{os, "addedMass"});
     measuredAddedMass::fields(addedInertia_[i], measuredWriter{os, "addedInertia"});
 }
@@ -558,6 +573,9 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
     innerMomentum_[i] = d.get<vector>("innerMomentum");
     innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
     innerMomentumSet_ = true;
+    // Restart files written before it have none: in contact (the
+    // extrapolation kept, as it was before)
+    previousContact_[i] = d.getOrDefault<bool>("inContact", true);
     // Restart files written before the measurement have none: it starts
     // again from nothing
     addedMass_[i].reset();
