@@ -6,7 +6,12 @@ Description
         a = g (sin theta - mu cos theta) above it;
       - a sphere (analytic cap, volume and Hertz-Mindlin laws) rolls
         without slip, a = 5/7 g sin theta, omega R = v;
-      - without friction both slide with a = g sin theta.
+      - without friction both slide with a = g sin theta;
+      - the box spinning flat on the plane about its normal stops at the
+        rate of Coulomb's friction on its face, mu F_n rbar/I (rbar the
+        mean distance of the face's points from its centre), and stays
+        stopped (twisting friction; a point's friction has no couple
+        about the normal).
 
     The incline: a horizontal plane wall z <= 0 and gravity turned by theta
     about y, g (sin theta, 0, -cos theta): the slope runs along +x.
@@ -319,6 +324,54 @@ TEST(demFriction, frictionlessSphereSlidesWithoutRolling)
 }
 
 
+TEST(demFriction, boxSpinningFlatStopsByTwistingFriction)
+{
+    const double mu = 0.5, w0 = 5;
+    auto dem = boxOnIncline(0, mu);
+    run(*dem, 0.05);
+    rigidBody& box = dem->bodies()[1];
+    box.angularVelocity = vec3(0, 0, w0);
+
+    // The square face 2a x 2a under uniform pressure: friction couple
+    // mu m g rbar, rbar = 2a (sqrt(2) + ln(1 + sqrt(2)))/6; the spin
+    // inertia m ((2a)^2 + (2a)^2)/12
+    const double side = 2*boxHalf.x();
+    const double rbar = side*(std::sqrt(2.0) + std::log(1 + std::sqrt(2.0)))/6;
+    const double m = box.mass();
+    const double Iz = m*2*side*side/12;
+    const double alphaExact = mu*m*g0*rbar/Iz;
+    const double tStop = w0/alphaExact;
+
+    std::vector<double> t, wz;
+    int lost = 0;
+    const double sample = tStop/50;
+    for (int i = 0; i <= 300; ++i)
+    {
+        const double tSample = 0.05 + i*sample;
+        while (dem->time() < tSample - 1e-12)
+        {
+            dem->step(std::min(dem->timeStep(), tSample - dem->time()));
+            if (dem->contacts().empty()) ++lost;
+        }
+        t.push_back(dem->time() - 0.05);
+        wz.push_back(dem->bodies()[1].angularVelocity.z());
+        ASSERT_TRUE(std::isfinite(wz.back()));
+    }
+    EXPECT_EQ(lost, 0);
+    // The deceleration while it slides (from a tenth to 0.8 of tStop)
+    const double alpha = -slope(t, wz, 0.1*tStop, 0.8*tStop);
+    std::printf("  spinning box: stops at %.1f rad/s2, Coulomb on the square "
+        "face %.1f rad/s2 (error %.2f %%); spin from 5 tStop on at most "
+        "%.2e rad/s\n",
+        alpha, alphaExact, 100*relErr(alpha, alphaExact), maxAbs(wz, 250));
+    EXPECT_LT(relErr(alpha, alphaExact), 0.05);
+    // Then at rest: the torsional spring, stretched to the limit while it
+    // slid, gives a little back (critically damped; the soft box's
+    // Lubkin stiffness makes it 7 mrad), and from 5 tStop on it is still
+    EXPECT_LT(maxAbs(wz, 250), 1e-2*w0);
+}
+
+
 TEST(demFriction, sphereRollsDownInclineVolumeLaw)
 {
     checkRolling("volume");
@@ -332,3 +385,5 @@ TEST(demFriction, sphereRollsDownInclineHertzMindlin)
 
 
 // ************************************************************************* //
+
+

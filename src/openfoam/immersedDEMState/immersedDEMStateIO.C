@@ -107,6 +107,7 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
                 os.writeEntry("point", v(h.point));
                 os.writeEntry("approach", h.approach);
                 os.writeEntry("maxNormalForce", h.maxNormalForce);
+                os.writeEntry("twist", h.twist);
                 os.endBlock();
             }
         }
@@ -253,6 +254,8 @@ bool Foam::immersedDEMState::readRestart()
         h.point = c(d.get<vector>("point"));
         h.approach = d.get<scalar>("approach");
         h.maxNormalForce = d.get<scalar>("maxNormalForce");
+        // (restart files written before twisting friction: none)
+        h.twist = d.getOrDefault<scalar>("twist", 0);
         histories[{bodyIndex(d, "bodyA"), bodyIndex(d, "bodyB")}].push_back(h);
     }
     dem_->setHistories(std::move(histories));

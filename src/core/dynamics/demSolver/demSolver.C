@@ -554,6 +554,17 @@ void demSolver::applyRegions
     const contactHistoryTable::range oldHistory = history_.find(key);
     next.beginPair(key);
     taken_.assign(oldHistory.size(), 0);
+    // Twisting friction (contactLaw::twistingCouple) for the laws on
+    // overlap regions: a flat face resting on another stops spinning
+    // about its normal (a point's friction has no couple about it). The
+    // law on spheres keeps its point contact (as LIGGGHTS's)
+    const bool twisting = !law_->needsSpheres();
+    mat3 inverseInertiaA = mat3::Zero(), inverseInertiaB = mat3::Zero();
+    if (twisting)
+    {
+        if (bodies_[ia].dynamic()) inverseInertiaA = bodies_[ia].worldInertia().inverse();
+        if (bodies_[ib].dynamic()) inverseInertiaB = bodies_[ib].worldInertia().inverse();
+    }
 
     for (size_t k = 0; k < nRegions; ++k)
     {
@@ -586,7 +597,19 @@ void demSolver::applyRegions
         in.relativeVelocity =
             (B.velocity + B.angularVelocity.cross(r.point - B.position))
           - (A.velocity + A.angularVelocity.cross(r.point - A.position));
-        const contactOutput f = law_->evaluate(in, h);
+        contactOutput f = law_->evaluate(in, h);
+        if (twisting)
+        {
+            const vec3& n = r.normal;
+            const double inverseSpinInertia =
+                n.dot(inverseInertiaA*n) + n.dot(inverseInertiaB*n);
+            f.couple += contactLaw::twistingCouple
+            (
+                in, h, f.normalForce,
+                (B.angularVelocity - A.angularVelocity).dot(n),
+                inverseSpinInertia > 0 ? 1/inverseSpinInertia : 0
+            )*n;
+        }
         h.normal = r.normal;
         h.point = r.point;
         next.add(h);
@@ -1182,6 +1205,7 @@ void demSolver::gatherLoads(contactHistoryTable& next)
             put3(h.point);
             mine.push_back(h.approach);
             mine.push_back(h.maxNormalForce);
+            mine.push_back(h.twist);
         }
     }
 
@@ -1239,6 +1263,7 @@ void demSolver::gatherLoads(contactHistoryTable& next)
                 h.point = get3();
                 h.approach = get();
                 h.maxNormalForce = get();
+                h.twist = get();
                 g.contacts.push_back(c);
                 g.histories.push_back(h);
             }
