@@ -560,7 +560,7 @@ void demSolver::applyRegions
     // law on spheres keeps its point contact (as LIGGGHTS's)
     const bool twisting = !law_->needsSpheres();
     mat3 inverseInertiaA = mat3::Zero(), inverseInertiaB = mat3::Zero();
-    if (twisting)
+    if (twisting && nRegions > 0)
     {
         if (bodies_[ia].dynamic()) inverseInertiaA = bodies_[ia].worldInertia().inverse();
         if (bodies_[ib].dynamic()) inverseInertiaB = bodies_[ib].worldInertia().inverse();
