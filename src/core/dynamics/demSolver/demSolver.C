@@ -559,12 +559,6 @@ void demSolver::applyRegions
     // about its normal (a point's friction has no couple about it). The
     // law on spheres keeps its point contact (as LIGGGHTS's)
     const bool twisting = !law_->needsSpheres();
-    mat3 inverseInertiaA = mat3::Zero(), inverseInertiaB = mat3::Zero();
-    if (twisting && nRegions > 0)
-    {
-        if (bodies_[ia].dynamic()) inverseInertiaA = bodies_[ia].worldInertia().inverse();
-        if (bodies_[ib].dynamic()) inverseInertiaB = bodies_[ib].worldInertia().inverse();
-    }
 
     for (size_t k = 0; k < nRegions; ++k)
     {
@@ -602,7 +596,7 @@ void demSolver::applyRegions
         {
             const vec3& n = r.normal;
             const double inverseSpinInertia =
-                n.dot(inverseInertiaA*n) + n.dot(inverseInertiaB*n);
+                bodies_[ia].inverseInertiaAlong(n) + bodies_[ib].inverseInertiaAlong(n);
             f.couple += contactLaw::twistingCouple
             (
                 in, h, f.normalForce,
@@ -654,7 +648,7 @@ double demSolver::inverseMassAlong
         return 0;
     }
     const vec3 rn = (x - b.pose.position()).cross(n);
-    return 1/(b.mass() + addedMass) + rn.dot(b.worldInertia().inverse()*rn);
+    return 1/(b.mass() + addedMass) + b.inverseInertiaAlong(rn);
 }
 
 
@@ -823,14 +817,7 @@ vec3 demSolver::tiltFilmTorque
     {
         // At most the whole relative tilting in one step, as the normal
         // film (the pair's moment of inertia about e)
-        double inv = 0;
-        for (const rigidBody* b : {&A, &B})
-        {
-            if (b->dynamic())
-            {
-                inv += e[i].dot(b->worldInertia().inverse()*e[i]);
-            }
-        }
+        const double inv = A.inverseInertiaAlong(e[i]) + B.inverseInertiaAlong(e[i]);
         if (inv > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
         {
             c[i] = std::min(c[i], 1/(inv*dt));

@@ -68,6 +68,12 @@ mat3 rigidBody::worldInertia() const
 }
 
 
+double rigidBody::inverseInertiaAlong(const vec3& a) const
+{
+    return dynamic() ? a.dot(worldInertia().inverse()*a) : 0;
+}
+
+
 double rigidBody::sphereRadiusOfVolume() const
 {
     return std::cbrt(3*geometry->volume()/(4*M_PI));

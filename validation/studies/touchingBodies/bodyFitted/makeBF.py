@@ -15,7 +15,7 @@ cubeSide (y=5), cubeBottom (z=95), cubeTop (z=105), all in group "cube".
 Forces on the patches are those on HALF a cube (y >= 0): multiply x and z
 components by 2 for one whole cube. Prints the mesh summary.
 """
-import argparse, csv, math, os
+import argparse, csv, math, os, sys
 
 ap = argparse.ArgumentParser(description="body-fitted quarter-tank case of two touching cubes")
 ap.add_argument("case", nargs="?", help="case directory (default WORK/bfcase)")
@@ -204,23 +204,10 @@ ncells = 0
 for (i, j, k) in blocks:
     ncells += segX[i][0] * segY[j][0] * segZ[k][0]
 
-os.makedirs(os.path.join(args.case, "system"), exist_ok=True)
-os.makedirs(os.path.join(args.case, "constant"), exist_ok=True)
-os.makedirs(os.path.join(args.case, "0"), exist_ok=True)
-
-HDR = """FoamFile
-{
-    version     2.0;
-    format      ascii;
-    class       %s;
-    object      %s;
-}
-"""
-
-
-def write(path, cls, obj, body):
-    with open(os.path.join(args.case, path), "w") as f:
-        f.write(HDR % (cls, obj) + body)
+# The dictionary writer (and the case's folders) of the IB tank cases
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import tankCase
+write = tankCase.writer(args.case)
 
 
 # ---------------------------------------------------------------- blockMesh
