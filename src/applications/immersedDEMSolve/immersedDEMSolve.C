@@ -170,6 +170,7 @@ int main(int argc, char *argv[])
     );
     dem->setTime(runTime.value());
     immersedDEMReader::initialOverlaps(*dem, properties.objectPath());
+    immersedDEMReader::reportMessages(*dem);
     // Insertion over time and removal: the bodies due at the start now,
     // then after every output interval
     immersedDEMStreams streams
@@ -284,6 +285,7 @@ int main(int argc, char *argv[])
             << ", kinetic energy " << dem->kineticEnergy() << " J"
             << ", DEM step "
             << immersedDEM::timeStepExplanation::lastStep(*dem).c_str() << endl;
+        immersedDEMReader::reportMessages(*dem);
 
         out->writeBodies(runTime.value(), *dem);
         out->writeContacts(runTime.value(), *dem);

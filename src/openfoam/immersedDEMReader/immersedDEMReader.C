@@ -87,7 +87,7 @@ demSettings readSettings(const dictionary& top)
             *c,
             {
                 "method", "level", "cellSize", "law", "characteristicLength", "normal",
-                "initialOverlaps", "reuse", "convexExact"
+                "initialOverlaps", "reuse", "convexExact", "volumeTolerance"
             }
         );
         wordList methods;
@@ -101,6 +101,25 @@ demSettings readSettings(const dictionary& top)
             )
         );
         s.overlap.h = immersedDEMChecks::positiveOrDefault(*c, "cellSize", 0);
+        // The resolution of each pair type from a tolerance on the
+        // overlap volume, unless cellSize or level fix it for all
+        const bool fixed = c->found("cellSize") || c->found("level");
+        if (fixed && c->found("volumeTolerance"))
+        {
+            FatalIOErrorInFunction(*c)
+                << "Keywords 'volumeTolerance' and '"
+                << (c->found("cellSize") ? "cellSize" : "level") << "' in "
+                << c->name() << " exclude each other: volumeTolerance chooses"
+                << " the cell size and level of each pair type; cellSize and"
+                << " level fix them for all pairs" << nl << exit(FatalIOError);
+        }
+        s.volumeTolerance =
+            fixed
+          ? 0
+          : immersedDEMChecks::inRangeOrDefault
+            (
+                *c, "volumeTolerance", 1e-4, 0.2, contactResolution::defaultTolerance
+            );
         wordList laws;
         for (const std::string& l : contactLaw::types()) laws.append(word(l));
         s.contactLaw = immersedDEMChecks::oneOfOrDefault(*c, "law", laws, demSettings().contactLaw);
@@ -737,6 +756,15 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
     // The step at the start, and why (it follows the speeds in the run)
     Info<< "    " << timeStepExplanation::of(*dem).text(*dem).c_str() << endl;
     return dem;
+}
+
+
+void Foam::immersedDEMReader::reportMessages(immersedDEM::demSolver& dem)
+{
+    for (const std::string& m : dem.takeMessages())
+    {
+        Info<< "    " << m.c_str() << endl;
+    }
 }
 
 

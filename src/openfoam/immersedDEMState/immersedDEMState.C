@@ -76,6 +76,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     if (!restarted_)
     {
         immersedDEMReader::initialOverlaps(*dem_, properties_.objectPath());
+        immersedDEMReader::reportMessages(*dem_);
     }
     if (!restarted_ && streams_->active())
     {

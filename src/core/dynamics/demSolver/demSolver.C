@@ -35,7 +35,12 @@ demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& 
     materials_(std::move(materials)),
     settings_(settings),
     engine_(overlapEngine::New(settings.overlapMethod)),
-    law_(contactLaw::New(settings.contactLaw))
+    law_(contactLaw::New(settings.contactLaw)),
+    resolutions_
+    (
+        settings.overlapMethod == "virtualMesh" && !(settings.overlap.h > 0)
+      ? settings.volumeTolerance : 0.0
+    )
 {
     if (materials_.empty())
     {
@@ -330,7 +335,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
     // plane wall's box holds everything: its pairs are dropped so by the
     // height of the body's centre above it
     const double dropBeyond = settings_.rejectSeparated
-        ? std::max(pairFilter::engineReach(engine_->type(), settings_.overlap), 2*margin)
+        ? std::max(engineReach(), 2*margin)
         : std::numeric_limits<double>::infinity();
 
     // Walls (few, large) against every body that can move
@@ -897,6 +902,38 @@ void demSolver::applyFilm
 }
 
 
+void demSolver::updateResolutions()
+{
+    if
+    (
+        !resolutions_.active()
+     || (resolvedCount_ == bodies_.size() && resolvedIdentity_ == nextIdentity_)
+    )
+    {
+        return;
+    }
+    resolutions_.update(bodies_, isWall_, settings_.overlap);
+    resolvedCount_ = bodies_.size();
+    resolvedIdentity_ = nextIdentity_;
+    double dMax = 0;
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (!isWall_[i]) dMax = std::max(dMax, 2*bodies_[i].equivalentRadius());
+    }
+    resolvedLeaf_ = resolutions_.largestLeaf(dMax);
+}
+
+
+double demSolver::engineReach() const
+{
+    const double reach = pairFilter::engineReach(engine_->type(), settings_.overlap);
+    return
+        resolvedLeaf_ > 0
+      ? std::max(reach, 1.01*std::sqrt(3.0)*resolvedLeaf_)
+      : reach;
+}
+
+
 void demSolver::computeContacts()
 {
     if (settings_.overlap.h <= 0)
@@ -911,6 +948,7 @@ void demSolver::computeContacts()
             settings_.overlap.h = overlapSettings::defaultCellSize(dMin);
         }
     }
+    updateResolutions();
 
     const auto t0 = std::chrono::steady_clock::now();
     for (rigidBody& b : bodies_)
@@ -924,7 +962,7 @@ void demSolver::computeContacts()
     const bool filter = settings_.rejectSeparated;
     if (filter)
     {
-        filter_.setReach(pairFilter::engineReach(engine_->type(), settings_.overlap));
+        filter_.setReach(engineReach());
         filter_.rejectProvenGaps(true);
         filter_.beginSweep();
     }
@@ -969,7 +1007,7 @@ void demSolver::computeContacts()
         {
             return;
         }
-        g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, settings_.overlap);
+        g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, pairSettings(p.first, p.second));
         ++counters_.pairEvaluations;
         counters_.queries += g.queries;
         const bool touching = applyContacts(p.first, p.second, g, next);
@@ -1430,7 +1468,7 @@ demSolver::stepChoice demSolver::stepFor(double T) const
     }
     const double reach = std::max
     (
-        pairFilter::engineReach(engine_->type(), settings_.overlap),
+        engineReach(),
         lubricationReach()
     );
 

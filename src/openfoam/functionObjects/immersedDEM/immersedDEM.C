@@ -6,6 +6,7 @@
 #include "coreError.H"
 #include "clockTime.H"
 #include "timeStepExplanation.H"
+#include "immersedDEMReader.H"
 #include "addToRunTimeSelectionTable.H"
 #include <string>
 
@@ -365,6 +366,7 @@ bool Foam::functionObjects::immersedDEM::execute()
         << " (projected bodies " << state_.projection().lastProjected() << ')'
         << ", DEM step " << ::immersedDEM::timeStepExplanation::lastStep(state_.dem()).c_str()
         << endl;
+    immersedDEMReader::reportMessages(state_.dem());
 
     if (output_)
     {
