@@ -37,10 +37,10 @@ double diameter(const shape& s)
 
 // The choice at the tolerance, checked on 18 other poses against the
 // reference; the former default's queries are more
-void checkChoice(const shape& A, const shape& B, double d, double tolerance)
+void checkChoice(const shape& A, const shape& B, double d, double depth, double tolerance)
 {
     const overlapSettings base;
-    const contactResolution r = contactResolution::calibrate(A, B, d, base, tolerance);
+    const contactResolution r = contactResolution::calibrate(A, B, d, depth, base, tolerance);
     SCOPED_TRACE(r.describe());
     ASSERT_TRUE(r.met);
     EXPECT_EQ(r.poses, 6);
@@ -52,13 +52,13 @@ void checkChoice(const shape& A, const shape& B, double d, double tolerance)
     std::vector<contactResolution::posePair> check;
     for (int set = 1; set <= 3; ++set)
     {
-        for (const auto& p : contactResolution::posesOf(A, B, d, set)) check.push_back(p);
+        for (const auto& p : contactResolution::posesOf(A, B, depth, set)) check.push_back(p);
     }
     const double error = contactResolution::largestError(A, B, d, check, r.settingsFor(base, d));
     EXPECT_LE(error, tolerance) << "on 18 poses not calibrated on";
 
     // Made again: the same (the poses are fixed)
-    const contactResolution again = contactResolution::calibrate(A, B, d, base, tolerance);
+    const contactResolution again = contactResolution::calibrate(A, B, d, depth, base, tolerance);
     EXPECT_EQ(again.level, r.level);
     EXPECT_EQ(again.cellsPerDiameter, r.cellsPerDiameter);
     EXPECT_EQ(again.error, r.error);
@@ -67,29 +67,54 @@ void checkChoice(const shape& A, const shape& B, double d, double tolerance)
 } // End namespace
 
 
-// Two 5,120-triangle lumpy stars against the exact overlap (CGAL)
+// Two 5,120-triangle lumpy stars against the exact overlap (CGAL), 3% of
+// d deep (a soft body's contact)
 TEST(contactResolution, lumpyStarsHoldTheirToleranceOnOtherPoses)
 {
     const auto star = lumpyStar();
-    checkChoice(*star, *star, diameter(*star), 0.005);
-    checkChoice(*star, *star, diameter(*star), 0.02);
+    const double d = diameter(*star);
+    checkChoice(*star, *star, d, 0.03*d, 0.005);
+    checkChoice(*star, *star, d, 0.03*d, 0.02);
+}
+
+
+// Glass-like depths (1e-4 d): the faceted tips are far from the exact
+// overlap at any level, so the former default stays, with its error
+// reported; two spheres there need the finest leaf as well
+TEST(contactResolution, shallowContactsKeepTheFormerDefault)
+{
+    const auto star = lumpyStar();
+    const double d = diameter(*star);
+    const contactResolution r =
+        contactResolution::calibrate(*star, *star, d, 1e-4*d, overlapSettings(), 0.005);
+    EXPECT_FALSE(r.met);
+    EXPECT_EQ(r.level, 6);
+    EXPECT_EQ(r.cellsPerDiameter, 5);
+    EXPECT_GT(r.error, 0.005);
+    EXPECT_NE(r.describe().find("no level is within the tolerance"), std::string::npos);
+
+    const sphereShape ball(0.005);
+    const contactResolution s =
+        contactResolution::calibrate(ball, ball, 0.01, 1e-6, overlapSettings(), 0.005);
+    EXPECT_EQ(s.level, 6);
 }
 
 
 // A lumpy star against a wall (calibrated as a plane), and spheres against
-// the lens and a wall: coarser than the former default where the surfaces
-// are smooth
+// the lens and a wall, 3% of d deep: coarser than the former default where
+// the surfaces are smooth
 TEST(contactResolution, wallsAndSpheres)
 {
     const auto star = lumpyStar();
     const halfSpaceShape wall;
     const sphereShape ball(0.005);
-    checkChoice(wall, *star, diameter(*star), 0.005);
-    checkChoice(ball, ball, 0.01, 0.005);
-    checkChoice(wall, ball, 0.01, 0.005);
+    const double d = diameter(*star);
+    checkChoice(wall, *star, d, 0.03*d, 0.005);
+    checkChoice(ball, ball, 0.01, 3e-4, 0.005);
+    checkChoice(wall, ball, 0.01, 3e-4, 0.005);
 
     const contactResolution r =
-        contactResolution::calibrate(ball, ball, 0.01, overlapSettings(), 0.005);
+        contactResolution::calibrate(ball, ball, 0.01, 3e-4, overlapSettings(), 0.005);
     EXPECT_LT(r.level, 6) << "two spheres need no leaf as fine as d/320 for 0.5%";
     EXPECT_LT(5*r.queries, r.defaultQueries);
 }
@@ -104,8 +129,10 @@ TEST(contactResolution, looserToleranceNoFinerLevel)
     int previous = 7;
     for (const double tolerance : {0.002, 0.005, 0.02, 0.05})
     {
-        const contactResolution r =
-            contactResolution::calibrate(*star, ball, std::min(d, 0.01), overlapSettings(), tolerance);
+        const contactResolution r = contactResolution::calibrate
+        (
+            *star, ball, std::min(d, 0.01), 3e-4, overlapSettings(), tolerance
+        );
         EXPECT_LE(r.level, previous) << "tolerance " << tolerance;
         if (r.met)
         {

@@ -78,9 +78,13 @@ double restitutionCalibration::damping(double e, double q)
         return lastC;
     }
 
+    // Each (e, q node) bisected when first asked: a law asks one q (Hertz
+    // 1.5, a flat face 1, a sphere 2), so the two nodes about it, not all
+    // nine (all nine were bisected at the first contact of a pour)
+    const double qc = std::min(3.0, std::max(1.0, q));
+    const int node = std::min(nQ - 2, int((qc - 1)/0.25));
     static std::mutex mutex;
     static std::map<double, std::array<double, nQ>> table;
-
     std::array<double, nQ> cs;
     {
         std::lock_guard<std::mutex> lock(mutex);
@@ -88,25 +92,25 @@ double restitutionCalibration::damping(double e, double q)
         if (it == table.end())
         {
             std::array<double, nQ> row;
-            for (int i = 0; i < nQ; ++i)
-            {
-                // e falls monotonically with c: bisect
-                double lo = 0, hi = 1;
-                while (restitution(hi, qOf(i)) > e) hi *= 2;
-                for (int k = 0; k < 32; ++k)
-                {
-                    const double mid = 0.5*(lo + hi);
-                    (restitution(mid, qOf(i)) > e ? lo : hi) = mid;
-                }
-                row[i] = 0.5*(lo + hi);
-            }
+            row.fill(-1);
             it = table.emplace(e, row).first;
+        }
+        for (int i = node; i <= node + 1; ++i)
+        {
+            if (it->second[i] >= 0) continue;
+            // e falls monotonically with c: bisect
+            double lo = 0, hi = 1;
+            while (restitution(hi, qOf(i)) > e) hi *= 2;
+            for (int k = 0; k < 32; ++k)
+            {
+                const double mid = 0.5*(lo + hi);
+                (restitution(mid, qOf(i)) > e ? lo : hi) = mid;
+            }
+            it->second[i] = 0.5*(lo + hi);
         }
         cs = it->second;
     }
-
-    const double qc = std::min(3.0, std::max(1.0, q));
-    const int i = std::min(nQ - 2, int((qc - 1)/0.25));
+    const int i = node;
     const double t = (qc - qOf(i))/0.25;
     lastE = e;
     lastQ = q;

@@ -912,7 +912,24 @@ void demSolver::updateResolutions()
     {
         return;
     }
-    resolutions_.update(bodies_, isWall_, settings_.overlap);
+    // The deepest a pair goes: the peak of a head-on collision at the
+    // reference speed, v t_c/pi (a linear spring's; Hertz's is 1.07 times
+    // that)
+    const double v = settings_.referenceSpeed;
+    auto depthOf = [&](size_t a, size_t b)
+    {
+        const rigidBody& A = bodies_[a];
+        const rigidBody& B = bodies_[b];
+        const double Reff = effectiveRadius(int(a), int(b));
+        const double lc =
+            settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
+        const double m =
+            effectiveMass(A.mass(), A.dynamic() && !isWall_[a], B.mass(), B.dynamic() && !isWall_[b]);
+        const double tc =
+            law_->contactTime(pairMaterialOf(A.material, B.material), m, Reff, lc, v);
+        return v*tc/M_PI;
+    };
+    resolutions_.update(bodies_, isWall_, settings_.overlap, depthOf);
     resolvedCount_ = bodies_.size();
     resolvedIdentity_ = nextIdentity_;
     double dMax = 0;

@@ -39,7 +39,8 @@ std::string pairResolutions::typeOf(const shape& s, bool wall)
 void pairResolutions::update
 (
     const std::vector<rigidBody>& bodies, const std::vector<char>& isWall,
-    const overlapSettings& base
+    const overlapSettings& base,
+    const std::function<double(size_t, size_t)>& depthOf
 )
 {
     if (!active()) return;
@@ -68,8 +69,10 @@ void pairResolutions::update
 
             // A the wall, if any
             const bool wallB = b->first == "wall";
-            const rigidBody& A = bodies[(wallB ? b : a)->second.index];
-            const rigidBody& B = bodies[(wallB ? a : b)->second.index];
+            const size_t ia = (wallB ? b : a)->second.index;
+            const size_t ib = (wallB ? a : b)->second.index;
+            const rigidBody& A = bodies[ia];
+            const rigidBody& B = bodies[ib];
             const bool wall = wallB || a->first == "wall";
             const shape& sa = *A.geometry;
             const shape& sb = *B.geometry;
@@ -88,8 +91,9 @@ void pairResolutions::update
               ? 2*B.equivalentRadius()
               : 2*std::min(A.equivalentRadius(), B.equivalentRadius());
 
+            const double depth = std::min(0.05*d, std::max(1e-6*d, depthOf(ia, ib)));
             const contactResolution r =
-                contactResolution::calibrate(sa, sb, d, base, tolerance_);
+                contactResolution::calibrate(sa, sb, d, depth, base, tolerance_);
             chosen_[key] = r;
             char tol[32];
             std::snprintf(tol, sizeof(tol), "%g%%", 100*tolerance_);

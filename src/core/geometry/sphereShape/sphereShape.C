@@ -10,24 +10,14 @@ namespace immersedDEM
 sphereShape::sphereShape(double R)
 :
     shape(staticKind),
-    R_(R)
+    R_(R),
+    volume_(4.0/3.0*M_PI*R*R*R),
+    moments_(vec3::Constant(0.4*volume_*R*R))
 {
     if (!(std::isfinite(R) && R > 0))
     {
         throw coreError("sphere radius must be positive and finite, not " + std::to_string(R));
     }
-}
-
-
-double sphereShape::volume() const
-{
-    return 4.0/3.0*M_PI*R_*R_*R_;
-}
-
-
-vec3 sphereShape::principalMoments() const
-{
-    return vec3::Constant(0.4*volume()*R_*R_);
 }
 
 

@@ -38,8 +38,6 @@ namespace
         return best;
     }
 
-    const double depthFractions[2] = {1e-2, 3e-2};
-
     // The candidates: base cells d/5, levels 0 to 6 (the finest leaf d/320,
     // the former default's: d/20 at level 4)
     const double candidateCells = 5;
@@ -66,10 +64,11 @@ namespace
         return s.shapeKind() == shape::kind::halfSpace || s.shapeKind() == shape::kind::wallMesh;
     }
 
-    // The volume and the queries of every pose at one resolution; false
-    // when it is beyond the engine's cell budget. The octree itself is
-    // measured, also for convex pairs (convexExact off)
-    bool measure
+    // The volume and the queries of every pose at one resolution; a pose
+    // the engine cannot measure (beyond its cell budget, or CGAL failing
+    // on a degenerate pose) gets -1. The octree itself is measured, also
+    // for convex pairs (convexExact off)
+    void measure
     (
         const overlapEngine& e, const shape& a, const shape& B,
         const std::vector<contactResolution::posePair>& poses,
@@ -83,28 +82,33 @@ namespace
         s.convexExact = false;
         V.assign(poses.size(), 0);
         queries = 0;
-        try
+        for (size_t i = 0; i < poses.size(); ++i)
         {
-            for (size_t i = 0; i < poses.size(); ++i)
+            try
             {
                 const contactGeometry g = e.evaluate(a, poses[i].A, B, poses[i].B, s);
                 V[i] = g.volume();
                 queries += g.queries;
             }
+            catch (const coreError&)
+            {
+                V[i] = -1;
+            }
         }
-        catch (const coreError&)
-        {
-            return false;
-        }
-        return true;
     }
 
+    // Over the poses the reference measured (a pose the candidate could
+    // not measure: no bound)
     double largestRelative(const std::vector<double>& V, const std::vector<double>& Vref)
     {
         double error = 0;
         for (size_t i = 0; i < V.size(); ++i)
         {
-            if (Vref[i] > 0) error = std::max(error, std::abs(V[i] - Vref[i])/Vref[i]);
+            if (!(Vref[i] > 0)) continue;
+            error =
+                V[i] < 0
+              ? std::numeric_limits<double>::max()
+              : std::max(error, std::abs(V[i] - Vref[i])/Vref[i]);
         }
         return error;
     }
@@ -113,7 +117,7 @@ namespace
 
 std::vector<contactResolution::posePair> contactResolution::posesOf
 (
-    const shape& A, const shape& B, double d, int set
+    const shape& A, const shape& B, double depth, int set
 )
 {
     std::vector<vec3> directions;
@@ -128,7 +132,7 @@ std::vector<contactResolution::posePair> contactResolution::posesOf
             bodyPose::axisAngle(vec3(1, 2, 3), 0.7),
             bodyPose::axisAngle(vec3(-2, 1, 1), 2.1)
         };
-        depths = {depthFractions[0]*d, depthFractions[1]*d};
+        depths = {depth, 0.25*depth};
     }
     else
     {
@@ -143,7 +147,7 @@ std::vector<contactResolution::posePair> contactResolution::posesOf
             directions.push_back(vec3(r*std::cos(phi), r*std::sin(phi), z));
             turns.push_back(bodyPose::axisAngle(vec3(std::sin(1.3*i), std::cos(0.7*i), 0.5), 0.9*i));
         }
-        depths = {0.015*d, 0.025*d};
+        depths = {0.7*depth, 0.4*depth};
     }
 
     const bool plane = isWall(A);
@@ -183,31 +187,28 @@ double contactResolution::largestError
     if (reference) *reference = name;
     std::vector<double> Vref, V;
     long queries = 0;
-    if
-    (
-        !measure(*referenceEngine, a, B, poses, settings, d/candidateCells, finestLevel + 1, Vref, queries)
-     || !measure(virtualMeshOverlap(), a, B, poses, settings, settings.h, settings.level, V, queries)
-    )
-    {
-        return std::numeric_limits<double>::max();
-    }
+    measure(*referenceEngine, a, B, poses, settings, d/candidateCells, finestLevel + 1, Vref, queries);
+    measure(virtualMeshOverlap(), a, B, poses, settings, settings.h, settings.level, V, queries);
     return largestRelative(V, Vref);
 }
 
 
 contactResolution contactResolution::calibrate
 (
-    const shape& A, const shape& B, double d,
+    const shape& A, const shape& B, double d, double depth,
     const overlapSettings& base, double tolerance
 )
 {
-    if (!(d > 0) || !(tolerance > 0))
+    if (!(d > 0) || !(tolerance > 0) || !(depth > 0))
     {
-        throw coreError("contactResolution: the diameter and the tolerance must be positive");
+        throw coreError
+        (
+            "contactResolution: the diameter, the depth and the tolerance must be positive"
+        );
     }
     const halfSpaceShape halfSpace;
     const shape& a = isWall(A) ? static_cast<const shape&>(halfSpace) : A;
-    const std::vector<posePair> set = posesOf(A, B, d, 0);
+    const std::vector<posePair> set = posesOf(A, B, depth, 0);
 
     contactResolution fallback;
     const std::unique_ptr<overlapEngine> referenceEngine = referenceOf(a, B, fallback.reference);
@@ -215,13 +216,11 @@ contactResolution contactResolution::calibrate
     fallback.cellsPerDiameter = candidateCells;
     fallback.level = finestLevel;
     fallback.met = false;
+    fallback.depth = depth/d;
 
     std::vector<double> Vref;
     long queries = 0;
-    if (!measure(*referenceEngine, a, B, set, base, d/candidateCells, finestLevel + 1, Vref, queries))
-    {
-        return fallback;
-    }
+    measure(*referenceEngine, a, B, set, base, d/candidateCells, finestLevel + 1, Vref, queries);
     for (const double v : Vref)
     {
         if (v > 0) ++fallback.poses;
@@ -241,9 +240,8 @@ contactResolution contactResolution::calibrate
     for (int level = 0; level <= finestLevel; ++level)
     {
         std::vector<double> V;
-        const double error =
-            measure(engine, a, B, set, base, d/candidateCells, level, V, queries)
-          ? largestRelative(V, Vref) : std::numeric_limits<double>::max();
+        measure(engine, a, B, set, base, d/candidateCells, level, V, queries);
+        const double error = largestRelative(V, Vref);
         errors.push_back(error);
         levelQueries.push_back(queries);
         fallback.defaultQueries = queries;
@@ -260,13 +258,15 @@ contactResolution contactResolution::calibrate
             if (level < finestLevel)
             {
                 std::vector<double> W;
-                r.defaultQueries =
-                    measure(engine, a, B, set, base, d/candidateCells, finestLevel, W, queries)
-                  ? queries : 0;
+                measure(engine, a, B, set, base, d/candidateCells, finestLevel, W, queries);
+                r.defaultQueries = queries;
             }
             return r;
         }
     }
+    // None: the finest, with its error
+    fallback.error = errors.back();
+    fallback.queries = levelQueries.back();
     return fallback;
 }
 
@@ -280,9 +280,11 @@ std::string contactResolution::describe() const
         std::snprintf
         (
             text, sizeof(text),
-            "cellSize d/%g, level %d (finest leaf d/%g): no coarser resolution is within"
-            " the tolerance against %s over %d poses 1-3%% of d deep",
-            cellsPerDiameter, level, leaf, reference.c_str(), poses
+            "cellSize d/%g, level %d (finest leaf d/%g, the former default): no level is"
+            " within the tolerance; this one is within %.3g%% of %s over %d poses %.2g and"
+            " %.2g d deep",
+            cellsPerDiameter, level, leaf, 100*error, reference.c_str(), poses, depth,
+            0.25*depth
         );
         return text;
     }
@@ -290,9 +292,10 @@ std::string contactResolution::describe() const
     (
         text, sizeof(text),
         "cellSize d/%g, level %d (finest leaf d/%g): volume within %.2g%% of %s over %d"
-        " poses 1-3%% of d deep; %.3g times fewer queries than the finest leaf d/320"
+        " poses %.2g and %.2g d deep; %.3g times fewer queries than the finest leaf d/320"
         " (the former default d/20, level 4)",
         cellsPerDiameter, level, leaf, 100*error, reference.c_str(), poses,
+        depth, 0.25*depth,
         queries > 0 ? double(defaultQueries)/double(queries) : 1.0
     );
     return text;
