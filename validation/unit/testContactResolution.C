@@ -11,6 +11,8 @@
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
 
+#include "testHelpers.H"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,13 +24,7 @@ using namespace immersedDEM;
 namespace
 {
 
-std::shared_ptr<const triangleMeshShape> lumpyStar()
-{
-    std::string f = std::string(__FILE__);
-    f = f.substr(0, f.rfind("validation/unit/"))
-      + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
-    return std::shared_ptr<const triangleMeshShape>(triangleMeshShape::fromFile(f));
-}
+using test::lumpyStar;
 
 double diameter(const shape& s)
 {
@@ -150,12 +146,7 @@ TEST(contactResolution, demPairsGetTheirResolution)
 {
     const auto star = lumpyStar();
     const double d = diameter(*star);
-    contactMaterial m;
-    m.name = "glass";
-    m.youngsModulus = 1e7;
-    m.poissonsRatio = 0.3;
-    m.restitution = 0.5;
-    m.friction = 0.3;
+    const contactMaterial m = test::material("soft glass", 1e7);
 
     auto build = [&](double cellSize)
     {

@@ -11,6 +11,8 @@
 #include "triangleMeshShape.H"
 #include "primitiveMeshes.H"
 
+#include "testHelpers.H"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,13 +56,7 @@ std::shared_ptr<const triangleMeshShape> icosahedron()
     return std::make_shared<triangleMeshShape>(primitiveMeshes::icosphere(0.005, 0), "icosahedron");
 }
 
-std::shared_ptr<const triangleMeshShape> lumpyStar()
-{
-    std::string f = std::string(__FILE__);
-    f = f.substr(0, f.rfind("validation/unit/"))
-      + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
-    return std::shared_ptr<const triangleMeshShape>(triangleMeshShape::fromFile(f));
-}
+using test::lumpyStar;
 
 // The x at which B (orientation qb, at (x, 0, 0)) just touches A (at the
 // origin, identity), by bisection on the exact overlap volume

@@ -10,6 +10,8 @@
 #include "triangleMeshShape.H"
 #include "primitiveMeshes.H"
 
+#include "testHelpers.H"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -20,13 +22,7 @@ using namespace immersedDEM;
 namespace
 {
 
-std::shared_ptr<const triangleMeshShape> lumpyStar()
-{
-    std::string f = std::string(__FILE__);
-    f = f.substr(0, f.rfind("validation/unit/"))
-      + "caseTemplates/arbitraryBodiesCollision/constant/triSurface/lumpyStar.stl";
-    return std::shared_ptr<const triangleMeshShape>(triangleMeshShape::fromFile(f));
-}
+using test::lumpyStar;
 
 // Cell centres of a grid of spacing h over the body's box grown by two
 // cells, slightly jittered (a mesh is not a lattice), and their reach: the

@@ -52,9 +52,11 @@ void pairResolutions::update
         int count = 0;
     };
     std::map<std::string, representative> types;
+    std::vector<std::string> typeOfBody(bodies.size());
     for (size_t i = 0; i < bodies.size(); ++i)
     {
-        representative& r = types[typeOf(*bodies[i].geometry, isWall[i])];
+        typeOfBody[i] = typeOf(*bodies[i].geometry, isWall[i]);
+        representative& r = types[typeOfBody[i]];
         if (r.count++ == 0) r.index = i;
     }
 
@@ -104,6 +106,32 @@ void pairResolutions::update
             );
         }
     }
+
+    // The table for settingsFor
+    std::map<std::string, int> index;
+    for (const auto& t : types)
+    {
+        const int k = int(index.size());
+        index[t.first] = k;
+    }
+    nTypes_ = int(index.size());
+    typeIndex_.clear();
+    for (size_t i = 0; i < bodies.size(); ++i)
+    {
+        typeIndex_[bodies[i].geometry.get()] = index[typeOfBody[i]];
+    }
+    table_.assign(size_t(nTypes_)*size_t(nTypes_), nullptr);
+    for (const auto& a : index)
+    {
+        for (const auto& b : index)
+        {
+            const auto it = chosen_.find(ordered(a.first, b.first));
+            if (it != chosen_.end())
+            {
+                table_[size_t(a.second)*size_t(nTypes_) + size_t(b.second)] = &it->second;
+            }
+        }
+    }
 }
 
 
@@ -114,16 +142,17 @@ overlapSettings pairResolutions::settingsFor
 ) const
 {
     if (!active() || chosen_.empty()) return base;
-    const auto it = chosen_.find
-    (
-        ordered(typeOf(*A.geometry, wallA), typeOf(*B.geometry, wallB))
-    );
-    if (it == chosen_.end()) return base;
+    const auto ia = typeIndex_.find(A.geometry.get());
+    const auto ib = typeIndex_.find(B.geometry.get());
+    if (ia == typeIndex_.end() || ib == typeIndex_.end()) return base;
+    const contactResolution* r =
+        table_[size_t(ia->second)*size_t(nTypes_) + size_t(ib->second)];
+    if (!r) return base;
     const double d =
         wallA ? 2*B.equivalentRadius()
       : wallB ? 2*A.equivalentRadius()
       : 2*std::min(A.equivalentRadius(), B.equivalentRadius());
-    return it->second.settingsFor(base, d);
+    return r->settingsFor(base, d);
 }
 
 
