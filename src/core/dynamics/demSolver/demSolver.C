@@ -1628,6 +1628,8 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     {
         return 0;
     }
+    // (the pairs' resolutions first: their reach enters the step)
+    updateResolutions();
     lastStep_ = stepFor(T);
     const double dtMax = lastStep_.deltaT;
     const double steps = std::ceil(T/dtMax - 1e-9);

@@ -5,12 +5,10 @@
 #include "coreError.H"
 #include "overlapEngine.H"
 
-#include <memory>
-
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace immersedDEM
