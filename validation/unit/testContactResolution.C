@@ -87,7 +87,7 @@ TEST(contactResolution, shallowContactsKeepTheFormerDefault)
     EXPECT_EQ(r.level, 6);
     EXPECT_EQ(r.cellsPerDiameter, 5);
     EXPECT_GT(r.error, 0.005);
-    EXPECT_NE(r.describe().find("no level is within the tolerance"), std::string::npos);
+    EXPECT_NE(r.describe().find("no coarser level holds the tolerance"), std::string::npos);
 
     const sphereShape ball(0.005);
     const contactResolution s =

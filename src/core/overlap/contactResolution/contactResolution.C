@@ -278,11 +278,11 @@ std::string contactResolution::describe() const
         std::snprintf
         (
             text, sizeof(text),
-            "cellSize d/%g, level %d (finest leaf d/%g, the former default): no level is"
-            " within the tolerance; this one is within %.3g%% of %s over %d poses %.2g and"
-            " %.2g d deep",
-            cellsPerDiameter, level, leaf, 100*error, reference.c_str(), poses, depth,
-            0.25*depth
+            "cellSize d/%g, level %d (finest leaf d/%g, as before: no coarser level holds"
+            " the tolerance); at %.2g and %.2g d deep (a collision at referenceSpeed) its"
+            " volume differs by up to %.3g%% from %s over %d poses",
+            cellsPerDiameter, level, leaf, depth, 0.25*depth, 100*error, reference.c_str(),
+            poses
         );
         return text;
     }
