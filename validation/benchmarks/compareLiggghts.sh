@@ -9,11 +9,18 @@
 # and how closely the piles agree (printed, not asserted). Builds nothing.
 #
 # Usage
-#   compareLiggghts.sh [spherePourBenchmark] [--steps N] [--keep]
+#   compareLiggghts.sh [spherePourBenchmark] [--steps N] [--rounds R]
+#                      [--cpu K] [--keep]
 #
 #   spherePourBenchmark  the benchmark binary (default: the one on PATH;
 #                        src/etc/bashrc puts the project's bin dir there)
 #   --steps N            steps in both codes (default 25000, 0.2 s)
+#   --rounds R           run the two codes in turn R times (default 1) and
+#                        print each round's ratio, their median and the
+#                        ratio of the fastest runs: on a shared machine the
+#                        same binary varies by up to 40% from run to run
+#   --cpu K              pin both codes to core K (taskset): the cores of a
+#                        shared machine need not be equally fast
 #   --keep               keep the run directory (logs) and print its name
 #
 # Needs Debian's liggghts package (apt-get install liggghts); the environment
@@ -25,14 +32,20 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 input="$here/liggghts/pour1000.in"
 bench=""
 steps=25000
+rounds=1
+cpu=""
 keep=0
 
 while [ $# -gt 0 ]; do
     case "$1" in
         --steps) steps="${2:?--steps needs a number}"; shift 2 ;;
         --steps=*) steps="${1#--steps=}"; shift ;;
+        --rounds) rounds="${2:?--rounds needs a number}"; shift 2 ;;
+        --rounds=*) rounds="${1#--rounds=}"; shift ;;
+        --cpu) cpu="${2:?--cpu needs a core number}"; shift 2 ;;
+        --cpu=*) cpu="${1#--cpu=}"; shift ;;
         --keep) keep=1; shift ;;
-        -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         -*) echo "compareLiggghts.sh: unknown option '$1'" >&2; exit 2 ;;
         *) bench="$1"; shift ;;
     esac
@@ -41,6 +54,22 @@ done
 if ! [[ "$steps" =~ ^[0-9]+$ ]] || [ "$steps" -lt 1 ]; then
     echo "compareLiggghts.sh: --steps must be a positive integer, not '$steps'" >&2
     exit 2
+fi
+if ! [[ "$rounds" =~ ^[0-9]+$ ]] || [ "$rounds" -lt 1 ]; then
+    echo "compareLiggghts.sh: --rounds must be a positive integer, not '$rounds'" >&2
+    exit 2
+fi
+pin=()
+if [ -n "$cpu" ]; then
+    if ! [[ "$cpu" =~ ^[0-9]+$ ]] || [ "$cpu" -ge "$(nproc)" ]; then
+        echo "compareLiggghts.sh: --cpu must be a core number below $(nproc), not '$cpu'" >&2
+        exit 2
+    fi
+    if ! command -v taskset > /dev/null; then
+        echo "compareLiggghts.sh: --cpu needs taskset (Debian's util-linux)" >&2
+        exit 1
+    fi
+    pin=(taskset -c "$cpu")
 fi
 
 liggghts=${LIGGGHTS:-$(command -v liggghts || true)}
@@ -81,48 +110,59 @@ echo "  ours:     $bench"
 echo "  machine:  $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 
-# LIGGGHTS first (serial, one process), in the run directory
-echo "Running LIGGGHTS ..."
-t0=$(now)
-if ! (cd "$run" && "$liggghts" -in "$input" -var nsteps "$steps" -log "$run/log.liggghts" \
-        > "$run/liggghts.out" 2>&1); then
-    echo "compareLiggghts.sh: LIGGGHTS failed; its output:" >&2
-    tail -20 "$run/liggghts.out" >&2
-    exit 1
-fi
-t1=$(now)
+# One round: each code once, in turn; its figures appended to rounds.txt
+# (LIGGGHTS loop, ours loop, LIGGGHTS process, ours process)
+oneRound() {
+    local r=$1
+    # LIGGGHTS first (serial, one process), in the run directory
+    echo "Round $r of $rounds: running LIGGGHTS ..."
+    t0=$(now)
+    if ! (cd "$run" && "${pin[@]}" "$liggghts" -in "$input" -var nsteps "$steps" -log "$run/log.liggghts" \
+            > "$run/liggghts.out" 2>&1); then
+        echo "compareLiggghts.sh: LIGGGHTS failed; its output:" >&2
+        tail -20 "$run/liggghts.out" >&2
+        exit 1
+    fi
+    t1=$(now)
 
-echo "Running spherePourBenchmark ..."
-t2=$(now)
-if ! (cd "$run" && "$bench" "$steps" > "$run/ours.out" 2>&1); then
-    echo "compareLiggghts.sh: spherePourBenchmark failed; its output:" >&2
-    tail -20 "$run/ours.out" >&2
-    exit 1
-fi
-t3=$(now)
+    echo "Round $r of $rounds: running spherePourBenchmark ..."
+    t2=$(now)
+    if ! (cd "$run" && "${pin[@]}" "$bench" "$steps" > "$run/ours.out" 2>&1); then
+        echo "compareLiggghts.sh: spherePourBenchmark failed; its output:" >&2
+        tail -20 "$run/ours.out" >&2
+        exit 1
+    fi
+    t3=$(now)
+
+    # LIGGGHTS: the last thermo line (step atoms keTrans keRot zMean zMax) and
+    # "Loop time of X on 1 procs for N steps"
+    read -r lStep lAtoms lKet lKer lZmean lZmax < <(
+        awk -v n="$steps" '$1 == n && NF == 6 { line = $0 } END { print line }' "$run/liggghts.out")
+    lLoop=$(awk '/^Loop time of/ { t = $4 } END { print t }' "$run/liggghts.out")
+    if [ -z "${lStep:-}" ] || [ -z "$lLoop" ]; then
+        echo "compareLiggghts.sh: could not read LIGGGHTS's output ($run/liggghts.out)" >&2
+        keep=1; trap - EXIT
+        exit 1
+    fi
+
+    # Ours: the RESULT line
+    result=$(grep '^RESULT ' "$run/ours.out" | tail -1)
+    field() { echo "$result" | tr ' ' '\n' | awk -F= -v k="$1" '$1 == k { print $2 }'; }
+    oSteps=$(field steps); oLoop=$(field wall); oKet=$(field keTrans); oKer=$(field keRot)
+    oZmean=$(field meanHeight); oZmax=$(field maxHeight); oLost=$(field lost)
+    if [ -z "$oSteps" ] || [ -z "$oLoop" ]; then
+        echo "compareLiggghts.sh: could not read spherePourBenchmark's RESULT line ($run/ours.out)" >&2
+        keep=1; trap - EXIT
+        exit 1
+    fi
+    awk -v a="$lLoop" -v b="$oLoop" -v t0="$t0" -v t1="$t1" -v t2="$t2" -v t3="$t3" \
+        'BEGIN { print a, b, t1 - t0, t3 - t2 }' >> "$run/rounds.txt"
+}
+
+for r in $(seq "$rounds"); do
+    oneRound "$r"
+done
 echo
-
-# LIGGGHTS: the last thermo line (step atoms keTrans keRot zMean zMax) and
-# "Loop time of X on 1 procs for N steps"
-read -r lStep lAtoms lKet lKer lZmean lZmax < <(
-    awk -v n="$steps" '$1 == n && NF == 6 { line = $0 } END { print line }' "$run/liggghts.out")
-lLoop=$(awk '/^Loop time of/ { t = $4 } END { print t }' "$run/liggghts.out")
-if [ -z "${lStep:-}" ] || [ -z "$lLoop" ]; then
-    echo "compareLiggghts.sh: could not read LIGGGHTS's output ($run/liggghts.out)" >&2
-    keep=1; trap - EXIT
-    exit 1
-fi
-
-# Ours: the RESULT line
-result=$(grep '^RESULT ' "$run/ours.out" | tail -1)
-field() { echo "$result" | tr ' ' '\n' | awk -F= -v k="$1" '$1 == k { print $2 }'; }
-oSteps=$(field steps); oLoop=$(field wall); oKet=$(field keTrans); oKer=$(field keRot)
-oZmean=$(field meanHeight); oZmax=$(field maxHeight); oLost=$(field lost)
-if [ -z "$oSteps" ] || [ -z "$oLoop" ]; then
-    echo "compareLiggghts.sh: could not read spherePourBenchmark's RESULT line ($run/ours.out)" >&2
-    keep=1; trap - EXIT
-    exit 1
-fi
 
 awk \
     -v lSteps="$lStep" -v lAtoms="$lAtoms" -v t0="$t0" -v t1="$t1" -v lLoop="$lLoop" \
@@ -155,6 +195,23 @@ awk \
     printf "    ours %.3e J, LIGGGHTS %.3e J\n", oKet + oKer, lKet + lKer
 }'
 
+
+# More than one round: each round's ratio, their median, and the ratio of
+# the fastest runs of each code
+if [ "$rounds" -gt 1 ]; then
+    echo
+    awk '
+    { l[NR] = $1; o[NR] = $2; q[NR] = $2/$1
+      printf "round %d: stepping loop LIGGGHTS %.2f s, ours %.2f s, ratio %.2f\n", NR, $1, $2, q[NR] }
+    END {
+        n = NR
+        for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (q[j] < q[i]) { t = q[i]; q[i] = q[j]; q[j] = t }
+        med = n % 2 ? q[(n + 1)/2] : 0.5*(q[n/2] + q[n/2 + 1])
+        lMin = l[1]; oMin = o[1]
+        for (i = 2; i <= n; ++i) { if (l[i] < lMin) lMin = l[i]; if (o[i] < oMin) oMin = o[i] }
+        printf "stepping loop ratio ours/LIGGGHTS over %d rounds: median %.2f, range %.2f-%.2f; fastest runs %.2f s / %.2f s = %.2f\n", n, med, q[1], q[n], oMin, lMin, oMin/lMin
+    }' "$run/rounds.txt"
+fi
 if [ "$keep" = 1 ]; then
     echo
     echo "logs kept in $run (liggghts.out, log.liggghts, ours.out)"

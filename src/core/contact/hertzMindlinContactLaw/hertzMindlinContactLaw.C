@@ -17,21 +17,21 @@ contactOutput hertzMindlinContactLaw::evaluate(const contactInput& in, contactHi
     h.approach = std::max(0.0, h.approach + vApproach*in.dt);
 
     // Stiffnesses Sn = 2 E sqrt(R delta), St = 8 G sqrt(R delta); the
-    // dampings c sqrt(m S) share sqrt(m sqrt(R delta))
+    // dampings c sqrt(m S)
     const double root = std::sqrt(R*delta);
     const double St = 8*G*root;
     const double c = restitutionCalibration::damping(in.material.restitution, 1.5);
-    const double cm = c*std::sqrt(in.effectiveMass*root);
+    const double mRoot = in.effectiveMass*root;
 
     contactOutput out;
     out.normalForce = std::max
     (
         0.0,
-        4.0/3.0*E*delta*root + cm*std::sqrt(2*E)*vApproach
+        4.0/3.0*E*delta*root + c*std::sqrt(2*E*mRoot)*vApproach
     );
     out.tangentialForce = tangentialForce
     (
-        in, h, St, cm*std::sqrt(8*G), out.normalForce, out.sliding
+        in, h, St, c*std::sqrt(8*G*mRoot), out.normalForce, out.sliding
     );
     out.force = out.normalForce*in.region.normal + out.tangentialForce;
     h.maxNormalForce = std::max(h.maxNormalForce, out.normalForce);

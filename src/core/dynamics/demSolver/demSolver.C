@@ -268,6 +268,37 @@ std::vector<std::pair<int, int>> demSolver::gridPairs
 }
 
 
+void demSolver::refreshNeighbours
+(
+    const std::vector<axisAlignedBox>& box, const std::vector<int>& others, double cell
+)
+{
+    // The neighbour list: pairs of bodies whose boxes, grown by a skin,
+    // overlap. Kept while every box stays inside its grown box of the last
+    // build, so that any two boxes that overlap now are in it
+    const size_t n = box.size();
+    bool valid = listBox_.size() == n;
+    for (size_t k = 0; valid && k < others.size(); ++k)
+    {
+        const int i = others[k];
+        valid =
+            (box[i].min.array() >= listBox_[i].min.array()).all()
+         && (box[i].max.array() <= listBox_[i].max.array()).all();
+    }
+    if (!valid)
+    {
+        const double skin = 0.1*cell;
+        listBox_.assign(n, axisAlignedBox());
+        for (const int i : others)
+        {
+            listBox_[i] = box[i].inflated(skin);
+        }
+        neighbours_ = gridPairs(listBox_, others);
+        ++counters_.broadPhaseBuilds;
+    }
+}
+
+
 std::vector<std::pair<int, int>> demSolver::candidatePairs()
 {
     const int n = int(bodies_.size());
@@ -302,28 +333,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
         }
     }
 
-    // The neighbour list: pairs of bodies whose boxes, grown by a skin,
-    // overlap. Kept while every box stays inside its grown box of the last
-    // build, so that any two boxes that overlap now are in it
-    bool valid = listBox_.size() == size_t(n);
-    for (int k = 0; valid && k < int(others.size()); ++k)
-    {
-        const int i = others[k];
-        valid =
-            (box[i].min.array() >= listBox_[i].min.array()).all()
-         && (box[i].max.array() <= listBox_[i].max.array()).all();
-    }
-    if (!valid)
-    {
-        const double skin = 0.1*cell;
-        listBox_.assign(n, axisAlignedBox());
-        for (const int i : others)
-        {
-            listBox_[i] = box[i].inflated(skin);
-        }
-        neighbours_ = gridPairs(listBox_, others);
-        ++counters_.broadPhaseBuilds;
-    }
+    refreshNeighbours(box, others, cell);
 
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(neighbours_.size() + walls.size()*others.size());
@@ -559,72 +569,88 @@ void demSolver::applyRegions
     const contactHistoryTable::range oldHistory = history_.find(key);
     next.beginPair(key);
     taken_.assign(oldHistory.size(), 0);
+    for (size_t k = 0; k < nRegions; ++k)
+    {
+        const int best = nearestHistory(oldHistory, regions[k], taken_.data());
+        if (best >= 0)
+        {
+            taken_[best] = 1;
+        }
+        applyRegion
+        (
+            ia, A, ib, B, regions[k], in, best >= 0 ? oldHistory.first + best : nullptr, next
+        );
+    }
+}
+
+
+int demSolver::nearestHistory
+(
+    const contactHistoryTable::range& old, const contactRegion& r, const char* taken
+) const
+{
+    // The history of the nearest region of the last step, if close
+    // (squared distances: the reach is max(h, sqrt(area)))
+    const double h0 = settings_.overlap.h;
+    int best = -1;
+    double bestDist2 = std::max(h0*h0, std::max(r.area, 0.0));
+    for (size_t j = 0; j < old.size(); ++j)
+    {
+        const double d2 = (old.first[j].point - r.point).squaredNorm();
+        if (!(taken && taken[j]) && d2 <= bestDist2)
+        {
+            best = int(j);
+            bestDist2 = d2;
+        }
+    }
+    return best;
+}
+
+
+void demSolver::applyRegion
+(
+    int ia, const bodyState& A, int ib, const bodyState& B,
+    const contactRegion& r, contactInput& in, const contactHistory* old,
+    contactHistoryTable& next
+)
+{
     // Twisting friction (contactLaw::twistingCouple) for the laws on
     // overlap regions: a flat face resting on another stops spinning
     // about its normal (a point's friction has no couple about it). The
     // law on spheres keeps its point contact (as LIGGGHTS's)
     const bool twisting = !law_->needsSpheres();
 
-    for (size_t k = 0; k < nRegions; ++k)
+    contactHistory& h = next.add(old ? *old : contactHistory());
+    in.region = r;
+    in.relativeVelocity =
+        (B.velocity + B.angularVelocity.cross(r.point - B.position))
+      - (A.velocity + A.angularVelocity.cross(r.point - A.position));
+    contacts_.emplace_back();
+    contactRecord& rec = contacts_.back();
+    rec.a = ia;
+    rec.b = ib;
+    rec.region = r;
+    contactOutput& f = rec.force;
+    f = law_->evaluate(in, h);
+    if (twisting)
     {
-        const contactRegion& r = regions[k];
-        // The history of the nearest region of the last step, if close
-        contactHistory h;
-        if (!oldHistory.empty())
-        {
-            // (squared distances: the reach is max(h, sqrt(area)))
-            const double h0 = settings_.overlap.h;
-            int best = -1;
-            double bestDist2 = std::max(h0*h0, std::max(r.area, 0.0));
-            for (size_t j = 0; j < oldHistory.size(); ++j)
-            {
-                const double d2 = (oldHistory.first[j].point - r.point).squaredNorm();
-                if (!taken_[j] && d2 <= bestDist2)
-                {
-                    best = int(j);
-                    bestDist2 = d2;
-                }
-            }
-            if (best >= 0)
-            {
-                taken_[best] = 1;
-                h = oldHistory.first[best];
-            }
-        }
-
-        in.region = r;
-        in.relativeVelocity =
-            (B.velocity + B.angularVelocity.cross(r.point - B.position))
-          - (A.velocity + A.angularVelocity.cross(r.point - A.position));
-        contactOutput f = law_->evaluate(in, h);
-        if (twisting)
-        {
-            const vec3& n = r.normal;
-            const double inverseSpinInertia =
-                bodies_[ia].inverseInertiaAlong(n) + bodies_[ib].inverseInertiaAlong(n);
-            f.couple += contactLaw::twistingCouple
-            (
-                in, h, f.normalForce,
-                (B.angularVelocity - A.angularVelocity).dot(n),
-                inverseSpinInertia > 0 ? 1/inverseSpinInertia : 0
-            )*n;
-        }
-        h.normal = r.normal;
-        h.point = r.point;
-        next.add(h);
-
-        load_.forceB += f.force;
-        load_.torqueB += (r.point - B.position).cross(f.force) + f.couple;
-        load_.forceA -= f.force;
-        load_.torqueA -= (r.point - A.position).cross(f.force) + f.couple;
-
-        contactRecord rec;
-        rec.a = ia;
-        rec.b = ib;
-        rec.region = r;
-        rec.force = f;
-        contacts_.push_back(rec);
+        const vec3& n = r.normal;
+        const double inverseSpinInertia =
+            bodies_[ia].inverseInertiaAlong(n) + bodies_[ib].inverseInertiaAlong(n);
+        f.couple += contactLaw::twistingCouple
+        (
+            in, h, f.normalForce,
+            (B.angularVelocity - A.angularVelocity).dot(n),
+            inverseSpinInertia > 0 ? 1/inverseSpinInertia : 0
+        )*n;
     }
+    h.normal = r.normal;
+    h.point = r.point;
+
+    load_.forceB += f.force;
+    load_.torqueB += (r.point - B.position).cross(f.force) + f.couple;
+    load_.forceA -= f.force;
+    load_.torqueA -= (r.point - A.position).cross(f.force) + f.couple;
 }
 
 
@@ -971,8 +997,8 @@ void demSolver::computeContacts()
     for (rigidBody& b : bodies_)
     {
         b.clearContactForces();
+        updateExternalLoad(b, loadTime_);
     }
-    updateExternalLoads(loadTime_);
     contacts_.clear();
     contactHistoryTable& next = nextHistory_;
     next.clear();
@@ -1122,52 +1148,55 @@ void demSolver::computeContacts()
     {
         return std::chrono::duration<double>(clock::now() - a).count();
     };
-    const auto searchStart = clock::now();
-    const auto candidates = candidatePairs();
-    counters_.searchSeconds += since(searchStart);
-    if (lub)
-    {
-        // Each body's pairs that may carry a film this step (an upper
-        // bound on its films: every process counts all pairs alike)
-        filmNeighbours_.assign(bodies_.size(), 0);
-        for (const auto& p : candidates)
-        {
-            ++filmNeighbours_[p.first];
-            ++filmNeighbours_[p.second];
-        }
-    }
     // This process's pairs (all of them, alone): their loads, summed per
     // pair, are added to the bodies in the order of the pairs once every
     // process's are gathered, so the sums do not depend on who made them
     loads_.clear();
     if (sphereSweepApplies())
     {
-        sphereSweep(candidates, next);
+        sphereSweep(next);
     }
-    else for (const auto& p : candidates)
+    else
     {
-        if (!owns(p.first, p.second))
-        {
-            continue;
-        }
-        load_ = pairLoad();
-        load_.a = p.first;
-        load_.b = p.second;
-        load_.contactsFrom = contacts_.size();
-        if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
-        {
-            contactOf(p);
-        }
+        const auto searchStart = clock::now();
+        const auto candidates = candidatePairs();
+        counters_.searchSeconds += since(searchStart);
         if (lub)
         {
-            const auto lubStart = clock::now();
-            lubricatePair(p.first, p.second, load_.contactsFrom);
-            counters_.lubricationSeconds += since(lubStart);
+            // Each body's pairs that may carry a film this step (an upper
+            // bound on its films: every process counts all pairs alike)
+            filmNeighbours_.assign(bodies_.size(), 0);
+            for (const auto& p : candidates)
+            {
+                ++filmNeighbours_[p.first];
+                ++filmNeighbours_[p.second];
+            }
         }
-        load_.contactsTo = contacts_.size();
-        if (load_.film || load_.contactsTo > load_.contactsFrom)
+        for (const auto& p : candidates)
         {
-            loads_.push_back(load_);
+            if (!owns(p.first, p.second))
+            {
+                continue;
+            }
+            load_ = pairLoad();
+            load_.a = p.first;
+            load_.b = p.second;
+            load_.contactsFrom = contacts_.size();
+            if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
+            {
+                contactOf(p);
+            }
+            if (lub)
+            {
+                const auto lubStart = clock::now();
+                lubricatePair(p.first, p.second, load_.contactsFrom);
+                counters_.lubricationSeconds += since(lubStart);
+            }
+            load_.contactsTo = contacts_.size();
+            if (load_.film || load_.contactsTo > load_.contactsFrom)
+            {
+                loads_.push_back(load_);
+            }
         }
     }
     if (comm_)
@@ -1342,18 +1371,15 @@ void demSolver::gatherLoads(contactHistoryTable& next)
 }
 
 
-void demSolver::updateExternalLoads(double t)
+void demSolver::updateExternalLoad(rigidBody& b, double t) const
 {
-    for (rigidBody& b : bodies_)
+    // Walls have infinite mass: no weight (and no inf*0 either)
+    b.externalForce = b.fluid.force;
+    if (b.dynamic())
     {
-        // Walls have infinite mass: no weight (and no inf*0 either)
-        b.externalForce = b.fluid.force;
-        if (b.dynamic())
-        {
-            b.externalForce = b.appliedFluidForce(t) + b.mass()*settings_.gravity;
-        }
-        b.externalTorque = b.dynamic() ? b.appliedFluidTorque(t) : b.fluid.torque;
+        b.externalForce = b.appliedFluidForce(t) + b.mass()*settings_.gravity;
     }
+    b.externalTorque = b.dynamic() ? b.appliedFluidTorque(t) : b.fluid.torque;
 }
 
 
@@ -1599,11 +1625,12 @@ void demSolver::step(double dt)
         loadTime_ = time_;
         computeContacts();
     }
-    // The fluid loads may have changed since the contacts were computed
-    updateExternalLoads(time_);
     lastDt_ = dt;
     for (rigidBody& b : bodies_)
     {
+        // The fluid loads may have changed since the contacts were
+        // computed
+        updateExternalLoad(b, time_);
         rigidBodyIntegrator::kick(b, 0.5*dt);
         rigidBodyIntegrator::drift(b, dt);
     }

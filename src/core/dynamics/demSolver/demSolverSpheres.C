@@ -19,6 +19,9 @@ Description
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
 
+#include <algorithm>
+#include <chrono>
+
 namespace immersedDEM
 {
 
@@ -50,33 +53,118 @@ bool demSolver::sphereSweepApplies() const
 }
 
 
-void demSolver::sphereSweep
-(
-    const std::vector<std::pair<int, int>>& candidates, contactHistoryTable& next
-)
+void demSolver::sphereCandidates()
 {
-    ++counters_.sphereSweeps;
     const size_t n = bodies_.size();
     sphereBodies_.resize(n);
+    boxes_.resize(n);
+    sphereWalls_.clear();
+    sphereOthers_.clear();
+    double cell = 0;
     for (size_t i = 0; i < n; ++i)
     {
         const rigidBody& b = bodies_[i];
         sphereBody& s = sphereBodies_[i];
         s.state = bodyState{b.pose.position(), b.velocity, b.angularVelocity};
-        if (const auto* sp = shapeAs<sphereShape>(*b.geometry))
+        // The shape's radius and the body's mass, kept while neither the
+        // shape nor the density changes (mass() asks the shape's volume)
+        if (s.geometry != b.geometry.get() || s.density != b.density)
         {
-            s.radius = sp->radius();
-            s.planeNormal = vec3::Zero();
+            const auto* sp = shapeAs<sphereShape>(*b.geometry);
+            s.geometry = b.geometry.get();
+            s.density = b.density;
+            s.radius = sp ? sp->radius() : 0;
+            s.mass = b.mass();
+        }
+        s.planeNormal =
+            s.radius > 0 ? vec3(vec3::Zero()) : b.pose.vectorToWorld(vec3::UnitZ());
+        s.material = b.material;
+        s.dynamic = b.dynamic();
+        if (isWall_[i])
+        {
+            sphereWalls_.push_back(int(i));
         }
         else
         {
-            s.radius = 0;
-            s.planeNormal = b.pose.vectorToWorld(vec3::UnitZ());
+            // (as sphereShape::worldBox)
+            const vec3& c = s.state.position;
+            boxes_[i] = axisAlignedBox(c.array() - s.radius, c.array() + s.radius);
+            cell = std::max(cell, boxes_[i].span().maxCoeff());
+            sphereOthers_.push_back(int(i));
         }
-        s.mass = b.mass();
-        s.material = b.material;
-        s.dynamic = b.dynamic();
     }
+    refreshNeighbours(boxes_, sphereOthers_, cell);
+
+    // The pairs that touch (the regions' own first test, sphereOverlap),
+    // in the order of candidatePairs: walls against the dynamic bodies,
+    // then the neighbours, merged. A pair that does not touch adds
+    // nothing, so this is the general loop's result from fewer pairs
+    auto apart = [this](int a, int b)
+    {
+        const sphereBody& A = sphereBodies_[a];
+        const sphereBody& B = sphereBodies_[b];
+        if (A.radius == 0)
+        {
+            return A.planeNormal.dot(B.state.position - A.state.position) >= B.radius;
+        }
+        const double R = A.radius + B.radius;
+        return (B.state.position - A.state.position).squaredNorm() >= R*R;
+    };
+    sphereWallPairs_.clear();
+    for (const int w : sphereWalls_)
+    {
+        const sphereBody& W = sphereBodies_[w];
+        if (W.radius == 0)
+        {
+            // (a plane: apart's test with the plane's data held)
+            const vec3 n = W.planeNormal;
+            const vec3 p0 = W.state.position;
+            for (const int i : sphereOthers_)
+            {
+                const sphereBody& B = sphereBodies_[i];
+                if (B.dynamic && !(n.dot(B.state.position - p0) >= B.radius))
+                {
+                    sphereWallPairs_.emplace_back(w, i);
+                }
+            }
+            continue;
+        }
+        for (const int i : sphereOthers_)
+        {
+            if (sphereBodies_[i].dynamic && !apart(w, i))
+            {
+                sphereWallPairs_.emplace_back(w, i);
+            }
+        }
+    }
+    sphereBodyPairs_.clear();
+    for (const auto& p : neighbours_)
+    {
+        if
+        (
+            (sphereBodies_[p.first].dynamic || sphereBodies_[p.second].dynamic)
+         && !apart(p.first, p.second)
+        )
+        {
+            sphereBodyPairs_.push_back(p);
+        }
+    }
+    spherePairs_.resize(sphereWallPairs_.size() + sphereBodyPairs_.size());
+    std::merge
+    (
+        sphereWallPairs_.begin(), sphereWallPairs_.end(),
+        sphereBodyPairs_.begin(), sphereBodyPairs_.end(), spherePairs_.begin()
+    );
+}
+
+
+void demSolver::sphereSweep(contactHistoryTable& next)
+{
+    ++counters_.sphereSweeps;
+    const auto searchStart = std::chrono::steady_clock::now();
+    sphereCandidates();
+    counters_.searchSeconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStart).count();
 
     // (the law on spheres reads neither the volume law's length nor the
     // potential law's flat face)
@@ -85,7 +173,7 @@ void demSolver::sphereSweep
     in.dt = lastDt_;
     contactRegion r;
     load_ = pairLoad();
-    for (const auto& p : candidates)
+    for (const auto& p : spherePairs_)
     {
         if (!owns(p.first, p.second))
         {
@@ -93,10 +181,6 @@ void demSolver::sphereSweep
         }
         const sphereBody& A = sphereBodies_[p.first];
         const sphereBody& B = sphereBodies_[p.second];
-        if (!(A.dynamic || B.dynamic))
-        {
-            continue;
-        }
         const bool plane = A.radius == 0;
         const bool touching =
             plane
@@ -132,18 +216,32 @@ void demSolver::sphereSweep
         load_.a = p.first;
         load_.b = p.second;
         load_.contactsFrom = contacts_.size();
-        applyRegions(p.first, A.state, p.second, B.state, &r, 1, in, next);
+        // (applyRegions of one region: no other region takes a history)
+        const auto key = std::make_pair(p.first, p.second);
+        const contactHistoryTable::range old = history_.find(key);
+        next.beginPair(key);
+        const int best = nearestHistory(old, r, nullptr);
+        applyRegion
+        (
+            p.first, A.state, p.second, B.state, r, in,
+            best >= 0 ? old.first + best : nullptr, next
+        );
         load_.contactsTo = contacts_.size();
         // Alone, the pairs' loads are added to the bodies now, in the
-        // order of the pairs as computeContacts adds loads_; shared, after
-        // the processes' loads are gathered
+        // order of the pairs as computeContacts adds loads_ (the film's
+        // are zero); shared, after the processes' loads are gathered
         if (comm_)
         {
             loads_.push_back(load_);
         }
         else
         {
-            addPairLoad(load_);
+            rigidBody& a = bodies_[p.first];
+            rigidBody& b = bodies_[p.second];
+            a.contactForce += load_.forceA;
+            a.contactTorque += load_.torqueA;
+            b.contactForce += load_.forceB;
+            b.contactTorque += load_.torqueB;
         }
     }
 }

@@ -45,10 +45,13 @@ bool sphereOverlap::lensRegion
     const double h2 = R2 - (d - x);     // cap of ball 2 before the plane
     const double V1 = capVolume(R1, h1);
     const double V2 = capVolume(R2, h2);
-    // Centroid of a cap of height hc from its ball's centre: 3(2R-hc)^2/(4(3R-hc))
+    // Centroid of a cap of height hc from its ball's centre:
+    // 3(2R-hc)^2/(4(3R-hc)); both over one division
     const double s1 = 2*R1 - h1, s2 = 2*R2 - h2;
-    const double z1 = 3*s1*s1/(4*(3*R1 - h1));
-    const double z2 = 3*s2*s2/(4*(3*R2 - h2));
+    const double q1 = 3*R1 - h1, q2 = 3*R2 - h2;
+    const double quarter = 0.75/(q1*q2);
+    const double z1 = s1*s1*q2*quarter;
+    const double z2 = s2*s2*q1*quarter;
     r.volume = V1 + V2;
     r.point = (V1*(c1 + z1*r.normal) + V2*(c2 - z2*r.normal))*(1/r.volume);
     r.area = M_PI*std::max(0.0, R1*R1 - x*x);
@@ -76,7 +79,8 @@ bool sphereOverlap::capRegion
     }
     const double hc = R - dist;
     r.volume = capVolume(R, hc);
-    r.point = c - 3*std::pow(2*R - hc, 2)/(4*(3*R - hc))*n;
+    const double s = 2*R - hc;
+    r.point = c - (0.75*s*s/(3*R - hc))*n;
     r.area = M_PI*(R*R - dist*dist);
     return true;
 }
