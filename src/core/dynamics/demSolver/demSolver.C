@@ -173,7 +173,7 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
 }
 
 
-void demSolver::addPairLoad(const pairLoad& l)
+void demSolver::addContactLoad(const pairLoad& l)
 {
     rigidBody& A = bodies_[l.a];
     rigidBody& B = bodies_[l.b];
@@ -181,6 +181,14 @@ void demSolver::addPairLoad(const pairLoad& l)
     A.contactTorque += l.torqueA;
     B.contactForce += l.forceB;
     B.contactTorque += l.torqueB;
+}
+
+
+void demSolver::addPairLoad(const pairLoad& l)
+{
+    addContactLoad(l);
+    rigidBody& A = bodies_[l.a];
+    rigidBody& B = bodies_[l.b];
     A.lubricationForce += l.filmForceA;
     A.lubricationTorque += l.filmTorqueA;
     B.lubricationForce += l.filmForceB;

@@ -236,12 +236,7 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         }
         else
         {
-            rigidBody& a = bodies_[p.first];
-            rigidBody& b = bodies_[p.second];
-            a.contactForce += load_.forceA;
-            a.contactTorque += load_.torqueA;
-            b.contactForce += load_.forceB;
-            b.contactTorque += load_.torqueB;
+            addContactLoad(load_);
         }
     }
 }
