@@ -66,16 +66,9 @@ void demSolver::sphereCandidates()
         const rigidBody& b = bodies_[i];
         sphereBody& s = sphereBodies_[i];
         s.state = bodyState{b.pose.position(), b.velocity, b.angularVelocity};
-        // The shape's radius and the body's mass, kept while neither the
-        // shape nor the density changes (mass() asks the shape's volume)
-        if (s.geometry != b.geometry.get() || s.density != b.density)
-        {
-            const auto* sp = shapeAs<sphereShape>(*b.geometry);
-            s.geometry = b.geometry.get();
-            s.density = b.density;
-            s.radius = sp ? sp->radius() : 0;
-            s.mass = b.mass();
-        }
+        const auto* sp = shapeAs<sphereShape>(*b.geometry);
+        s.radius = sp ? sp->radius() : 0;
+        s.mass = b.mass();
         s.planeNormal =
             s.radius > 0 ? vec3(vec3::Zero()) : b.pose.vectorToWorld(vec3::UnitZ());
         s.material = b.material;
