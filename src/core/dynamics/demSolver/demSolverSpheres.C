@@ -92,14 +92,10 @@ void demSolver::sphereCandidates()
     // in the order of candidatePairs: walls against the dynamic bodies,
     // then the neighbours, merged. A pair that does not touch adds
     // nothing, so this is the general loop's result from fewer pairs
-    auto apart = [this](int a, int b)
+    auto spheresApart = [this](int a, int b)
     {
         const sphereBody& A = sphereBodies_[a];
         const sphereBody& B = sphereBodies_[b];
-        if (A.radius == 0)
-        {
-            return A.planeNormal.dot(B.state.position - A.state.position) >= B.radius;
-        }
         const double R = A.radius + B.radius;
         return (B.state.position - A.state.position).squaredNorm() >= R*R;
     };
@@ -107,24 +103,16 @@ void demSolver::sphereCandidates()
     for (const int w : sphereWalls_)
     {
         const sphereBody& W = sphereBodies_[w];
-        if (W.radius == 0)
-        {
-            // (a plane: apart's test with the plane's data held)
-            const vec3 n = W.planeNormal;
-            const vec3 p0 = W.state.position;
-            for (const int i : sphereOthers_)
-            {
-                const sphereBody& B = sphereBodies_[i];
-                if (B.dynamic && !(n.dot(B.state.position - p0) >= B.radius))
-                {
-                    sphereWallPairs_.emplace_back(w, i);
-                }
-            }
-            continue;
-        }
+        const vec3 n = W.planeNormal;
+        const vec3 p0 = W.state.position;
         for (const int i : sphereOthers_)
         {
-            if (sphereBodies_[i].dynamic && !apart(w, i))
+            const sphereBody& B = sphereBodies_[i];
+            const bool apart =
+                W.radius == 0
+              ? n.dot(B.state.position - p0) >= B.radius
+              : spheresApart(w, i);
+            if (B.dynamic && !apart)
             {
                 sphereWallPairs_.emplace_back(w, i);
             }
@@ -136,7 +124,7 @@ void demSolver::sphereCandidates()
         if
         (
             (sphereBodies_[p.first].dynamic || sphereBodies_[p.second].dynamic)
-         && !apart(p.first, p.second)
+         && !spheresApart(p.first, p.second)
         )
         {
             sphereBodyPairs_.push_back(p);
