@@ -24,8 +24,16 @@ Description
     Outputs, in postProcessing/immersedDEMSolve/<startTime>/: bodies.dat,
     contacts.dat and VTK/bodies_<time>.vtk with VTK/bodies.vtk.series.
 
+    Parallel (mpirun -np N immersedDEMSolve -parallel): every rank holds
+    every body and the ranks share out the pair evaluations; the loads are
+    added in the order of the pairs, so the trajectories are the serial
+    run's, bit for bit. A case without a mesh needs no decomposition; a
+    case with one (walls of type patch) is decomposed first (decomposePar),
+    each rank reading its part of the walls. The master writes the outputs.
+
 Usage
     immersedDEMSolve [-case dir] [-progress seconds] [-withFunctionObjects]
+        [-parallel]
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
@@ -39,6 +47,8 @@ Usage
 #include "Switch.H"
 
 #include "immersedDEMReader.H"
+#include "pstreamCommunicator.H"
+#include "demWorkLine.H"
 #include "immersedDEMStreams.H"
 #include "demOutput.H"
 #include "runSummary.H"
@@ -68,7 +78,9 @@ int main(int argc, char *argv[])
     (
         "Run the bodies of constant/immersedDEMProperties with no fluid"
     );
-    argList::noParallel();
+    // Parallel: a case without a mesh runs undecomposed (no processor
+    // folders); a case with a mesh is checked below
+    argList::noCheckProcessorDirectories();
     // The coupled function object of a coupled case's controlDict needs
     // the fluid: not run here unless asked for
     argList::noFunctionObjects(true);
@@ -140,12 +152,41 @@ int main(int argc, char *argv[])
     }
 
     // The case's mesh, if it has one: walls of type patch take its faces
+    // (in parallel each processor's part; the reader gathers them)
+    auto hasMesh = [&runTime](const fileName& caseDir)
+    {
+        return
+            isFile(caseDir/runTime.constant()/polyMesh::meshSubDir/"faces")
+         || isDir(caseDir/runTime.timeName()/polyMesh::meshSubDir);
+    };
     std::unique_ptr<polyMesh> mesh;
-    if
-    (
-        isFile(runTime.path()/runTime.constant()/polyMesh::meshSubDir/"faces")
-     || isDir(runTime.path()/runTime.timeName()/polyMesh::meshSubDir)
-    )
+    const bool meshHere = hasMesh(runTime.path());
+    if (Pstream::parRun())
+    {
+        // Every rank the same: all read their part, or none does
+        const bool meshGlobal = hasMesh(runTime.globalPath());
+        bool all = meshHere, any = meshHere;
+        reduce(all, andOp<bool>());
+        reduce(any, orOp<bool>());
+        if (any && !all)
+        {
+            FatalErrorInFunction
+                << "Case " << runTime.globalPath() << ": some processor folders"
+                << " have a mesh and some do not; decompose the case again"
+                << " (decomposePar -force) for " << Pstream::nProcs()
+                << " processors" << exit(FatalError);
+        }
+        if (!any && meshGlobal)
+        {
+            FatalErrorInFunction
+                << "Case " << runTime.globalPath() << " has a mesh ("
+                << runTime.constant()/polyMesh::meshSubDir << ") but no processor"
+                << " folders with its parts: run decomposePar first (its walls"
+                << " of type patch come from the decomposed mesh), or run"
+                << " serially" << exit(FatalError);
+        }
+    }
+    if (meshHere)
     {
         Info<< "Reading the mesh for walls of type patch" << endl;
         mesh.reset
@@ -169,6 +210,15 @@ int main(int argc, char *argv[])
         properties, surfaceDir, g.value(), mesh.get(), &newStreams
     );
     dem->setTime(runTime.value());
+    if (Pstream::parRun())
+    {
+        Info<< "The DEM's pair evaluations shared by " << Pstream::nProcs()
+            << " processors" << endl;
+        dem->setCommunicator
+        (
+            std::make_shared<immersedDEMParallel::pstreamCommunicator>()
+        );
+    }
     immersedDEMReader::initialOverlaps(*dem, properties.objectPath());
     immersedDEMReader::reportMessages(*dem);
     // Insertion over time and removal: the bodies due at the start now,
@@ -185,18 +235,23 @@ int main(int argc, char *argv[])
 
     const fileName outDir =
         runTime.globalPath()/"postProcessing"/"immersedDEMSolve"/runTime.timeName();
+    // The outputs: the master's (every rank holds the same bodies)
     std::unique_ptr<immersedDEM::demOutput> out;
     try
     {
-        // A rerun writes bodies_<startTime>.dat next to an earlier run's
-        // bodies.dat (OpenFOAM's writeFile convention), never appends to it
-        out.reset(new immersedDEM::demOutput(outDir, runTime.timeName()));
-        Info<< "Writing " << out->bodiesFile() << " and "
-            << out->contactsFile() << endl;
         dem->computeContacts();
-        out->writeBodies(runTime.value(), *dem);
-        out->writeContacts(runTime.value(), *dem);
-        out->writeVTK(runTime.value(), *dem);
+        if (Pstream::master())
+        {
+            // A rerun writes bodies_<startTime>.dat next to an earlier
+            // run's bodies.dat (OpenFOAM's writeFile convention), never
+            // appends to it
+            out.reset(new immersedDEM::demOutput(outDir, runTime.timeName()));
+            Info<< "Writing " << out->bodiesFile() << " and "
+                << out->contactsFile() << endl;
+            out->writeBodies(runTime.value(), *dem);
+            out->writeContacts(runTime.value(), *dem);
+            out->writeVTK(runTime.value(), *dem);
+        }
     }
     catch (const immersedDEM::coreError& err)
     {
@@ -287,11 +342,14 @@ int main(int argc, char *argv[])
             << immersedDEM::timeStepExplanation::lastStep(*dem).c_str() << endl;
         immersedDEMReader::reportMessages(*dem);
 
-        out->writeBodies(runTime.value(), *dem);
-        out->writeContacts(runTime.value(), *dem);
-        if (runTime.writeTime())
+        if (out)
         {
-            out->writeVTK(runTime.value(), *dem);
+            out->writeBodies(runTime.value(), *dem);
+            out->writeContacts(runTime.value(), *dem);
+            if (runTime.writeTime())
+            {
+                out->writeVTK(runTime.value(), *dem);
+            }
         }
         outputSeconds += seconds(b, wallClock::now());
     }
@@ -302,9 +360,7 @@ int main(int argc, char *argv[])
     immersedDEM::runSummary::demParts(*dem, demSeconds, parts);
     parts.output = outputSeconds;
     parts.total = seconds(wallStart, wallClock::now());
-    Info<< "\nDEM steps " << w.steps << ", pair evaluations " << w.pairEvaluations
-        << ", contacts reused " << w.reusedEvaluations << ", queries " << w.queries
-        << nl << nl
+    Info<< nl << immersedDEMParallel::demWorkLine(*dem).c_str() << nl << nl
         << summary.text(parts, runTime.value() - t0, w.steps, false).c_str() << nl
         << nl << "ExecutionTime = " << runTime.elapsedCpuTime() << " s"
         << nl << "End\n" << endl;

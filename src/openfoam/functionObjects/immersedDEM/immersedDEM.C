@@ -2,6 +2,7 @@
 #include "immersedDEMState.H"
 #include "dictionaryChecks.H"
 #include "demOutput.H"
+#include "demWorkLine.H"
 #include "runSummary.H"
 #include "coreError.H"
 #include "clockTime.H"
@@ -412,47 +413,10 @@ bool Foam::functionObjects::immersedDEM::end()
     }
     Log << endl;
 
-    // The DEM's pair work over the run: contacts evaluated by the engine,
-    // carried from an earlier evaluation, films; in parallel per processor
-    // (each evaluates the pairs it owns). Counts as doubles: exact to
-    // 2^53, where a label (32 bits) would wrap in a long dense run
-    {
-        const auto& w = state_.dem().work();
-        const label nProcs = Pstream::parRun() ? Pstream::nProcs() : 1;
-        const label me = Pstream::parRun() ? Pstream::myProcNo() : 0;
-        scalarList evaluated(nProcs, Zero), carried(nProcs, Zero), films(nProcs, Zero);
-        evaluated[me] = scalar(w.pairEvaluations);
-        carried[me] = scalar(w.reusedEvaluations);
-        films[me] = scalar(w.lubricatedPairs);
-        if (Pstream::parRun())
-        {
-            for (scalarList* l : {&evaluated, &carried, &films})
-            {
-                Pstream::gatherList(*l);
-                Pstream::scatterList(*l);
-            }
-        }
-        auto count = [](scalar x) { return std::to_string(static_cast<long long>(x)); };
-        Log << type() << ' ' << name() << ": contacts evaluated "
-            << count(sum(evaluated)).c_str() << ", carried " << count(sum(carried)).c_str()
-            << ", films " << count(sum(films)).c_str() << " over "
-            << count(scalar(w.steps)).c_str() << " DEM steps";
-        if (Pstream::parRun())
-        {
-            Log << "; the DEM's pairs shared by " << nProcs
-                << " processors; contacts evaluated or carried per processor:";
-            forAll(evaluated, p)
-            {
-                Log << ' ' << count(evaluated[p] + carried[p]).c_str();
-            }
-            Log << "; films per processor:";
-            forAll(films, p)
-            {
-                Log << ' ' << count(films[p]).c_str();
-            }
-        }
-        Log << endl;
-    }
+    // The DEM's pair work over the run (in parallel summed over the
+    // processors, each evaluating the pairs it owns)
+    Log << type() << ' ' << name() << ": "
+        << immersedDEMParallel::demWorkLine(state_.dem()).c_str() << endl;
 
     // The seconds per part over the whole run (the DEM's own split from
     // its counters), against the run's wall time since this function
