@@ -80,10 +80,12 @@ vec3 contactLaw::tangentialForce
     vec3 ft = -stiffness*xi - dampingT*vt;
     const double limit = in.material.friction*normalForce;
     sliding = false;
-    if (ft.norm() > limit)
+    // (squared: a sticking contact, the common one, takes no root)
+    const double fn2 = ft.squaredNorm();
+    if (fn2 > limit*limit || limit < 0)
     {
         sliding = true;
-        const double fn = ft.norm();
+        const double fn = std::sqrt(fn2);
         ft = fn > 0 ? vec3(ft*(limit/fn)) : vec3(vec3::Zero());
         // The spring holds what the limit allows, less the damping part
         xi = stiffness > 0 ? vec3(-(ft + dampingT*vt)/stiffness) : vec3(vec3::Zero());

