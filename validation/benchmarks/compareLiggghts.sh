@@ -92,6 +92,8 @@ if [ ! -x "$bench" ]; then
     echo "compareLiggghts.sh: '$bench' is not an executable" >&2
     exit 1
 fi
+# (the runs start in their own folders: a relative path is taken from here)
+bench=$(cd "$(dirname "$bench")" && pwd)/$(basename "$bench")
 if [ ! -f "$input" ]; then
     echo "compareLiggghts.sh: the LIGGGHTS input '$input' is missing" >&2
     exit 1
