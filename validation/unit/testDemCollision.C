@@ -227,3 +227,42 @@ TEST(demCollision, timeStepResolvesTheContact)
     EXPECT_LE(dem.timeStep(), ref.duration/30);
     EXPECT_GE(dem.timeStep(), ref.duration/40);
 }
+
+
+// The marks the fluid coupling reads to tell an isolated impact from a
+// rattle (demSolver::touched): a body with a contact at any step since
+// clearTouched is marked, even when the contact is over by the end of the
+// advance; a body that met nothing is not; clearTouched forgets
+TEST(demCollision, touchedMarksEveryBodyWithAContactWithinTheAdvance)
+{
+    auto sphere = std::make_shared<sphereShape>(R);
+    contactMaterial rubber{"rubber", Y, nu, 0.9, 0};
+    demSettings s;
+    s.contactLaw = "hertzMindlin";
+    s.referenceSpeed = 1;
+    demSolver dem({rubber}, s);
+    rigidBody a("a", sphere, rho), b("b", sphere, rho), c("c", sphere, rho);
+    a.pose = sphere->poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    b.pose = sphere->poseFromFilePlacement(quat::Identity(), vec3(2*R + 0.01*R, 0, 0));
+    c.pose = sphere->poseFromFilePlacement(quat::Identity(), vec3(0, 10*R, 0));
+    a.velocity = vec3(0.5, 0, 0);
+    b.velocity = vec3(-0.5, 0, 0);
+    c.velocity = vec3(0, 0.1, 0);
+    dem.addBody(a);
+    dem.addBody(b);
+    dem.addBody(c);
+    dem.clearTouched();
+    // Long enough for the collision to begin and end (the contact lasts
+    // far less than 2 ms at 1 m/s)
+    dem.advance(2e-3);
+    ASSERT_TRUE(dem.pairsInContact().empty()) << "the collision is over";
+    ASSERT_GT(dem.bodies()[1].velocity.x(), 0) << "b rebounded";
+    ASSERT_EQ(dem.touched().size(), 3u);
+    EXPECT_TRUE(dem.touched()[0]);
+    EXPECT_TRUE(dem.touched()[1]);
+    EXPECT_FALSE(dem.touched()[2]);
+    dem.clearTouched();
+    dem.advance(1e-4);
+    EXPECT_FALSE(dem.touched()[0]);
+    EXPECT_FALSE(dem.touched()[1]);
+}

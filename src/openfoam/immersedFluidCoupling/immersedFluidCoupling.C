@@ -7,6 +7,8 @@
 #include "syncTools.H"
 #include "surfaceFields.H"
 
+#include <bitset>
+
 using namespace immersedDEM;
 
 namespace Foam
@@ -60,6 +62,7 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     addedInertia_.setSize(n);
     reportedAddedMass_.setSize(n, 0);
     previousContact_.setSize(n, false);
+    recentContacts_.setSize(n, allSteps);
     for (label i = 0; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -357,16 +360,18 @@ void Foam::immersedFluidCoupling::fluidLoads
 )
 {
     const scalar rho = s.rho, Ca = s.Ca;
-    const bool measure = s.measure, impactInertia = s.impactInertia;
+    const bool measure = s.measure;
+    using impact = settings::impact;
     const clockTime timer;
     setInnerMomentum(projection, dem, U);
     List<vector> P, PM, M, L;
     fluidSums(projection, dem, U, deltaT, P, PM, M, L);
     auto& bodies = dem.bodies();
     // Bodies in contact at the end of the last DEM step (pairs with a
-    // contact history). With impactInertia they keep the damper
-    // (fluidLoad.H) and the others carry their added mass as inertia, so
-    // that an impact within the next step keeps its rebound
+    // contact history). They keep the damper (fluidLoad.H); with
+    // impactInertia the others (yes), or those that had one impact
+    // (isolated), carry their added mass as inertia, so that an impact
+    // within the next step keeps its rebound
     List<bool> inContact(bodies.size(), false);
     for (const auto& p : dem.pairsInContact())
     {
@@ -407,18 +412,34 @@ void Foam::immersedFluidCoupling::fluidLoads
         const scalar aFloor = 1e-2;
         addedMass_[i].record
         (
-            F, (b.velocity - c(previousVelocity_[i]))/deltaT, sqr(aFloor),
-            impactInertia
+            F, (b.velocity - c(previousVelocity_[i]))/deltaT, sqr(aFloor)
         );
         addedInertia_[i].record
         (
             T, (b.angularVelocity - c(previousAngularVelocity_[i]))/deltaT,
             sqr(aFloor)/pow(Vb, 2.0/3.0)
         );
+        // Inertia over this step (see settings::impact). A body carrying
+        // its added mass as inertia takes M only from changes of force
+        // that follow its changes of acceleration (measuredAddedMass: the
+        // force noise of a resolved sphere read as M would carry its
+        // bounce on)
+        const label impacts =
+            std::bitset<32>(recentContacts_[i]).count();
+        bool inertia =
+            !inContact[i]
+         && (
+                s.impactInertia == impact::yes
+             || (s.impactInertia == impact::isolated && impacts <= 1)
+            );
         if (measure)
         {
             const scalar cap = 100;
-            ma = addedMass_[i].stabilisation(b.mass(), ma, cap*unitMass);
+            ma = addedMass_[i].stabilisation
+            (
+                b.mass(), ma, cap*unitMass,
+                inertia || s.impactInertia == impact::yes
+            );
             Ia = addedInertia_[i].stabilisation
             (
                 b.inertia().sum()/3, Ia, cap*unitInertia
@@ -431,16 +452,36 @@ void Foam::immersedFluidCoupling::fluidLoads
         // from it (zero reference accelerations). Extrapolated, the
         // landing's deceleration became a course upwards, and the damper
         // pulled the body off what it had landed on (src/README.md,
-        // coupling). A body leaving a contact keeps its reference: with
-        // impactInertia, m_a a_ref meets the fluid's answer to the push
-        const bool landed = inContact[i] && !previousContact_[i];
+        // coupling). A body leaving a contact keeps its reference (with
+        // impactInertia yes, m_a a_ref meets the fluid's answer to the
+        // push). With isolated: the nominal Ca rho V as inertia where
+        // that is stable (r = (Ca rho V - M)/(m + Ca rho V) > -1: the
+        // measured M within m + 2 Ca rho V; two cubes 0.1 mm apart in a
+        // viscous oil blew up without this), and a body leaving a contact
+        // carries nothing of its push-off on (zero reference
+        // acceleration: its m_a a_ref kept a pellet leaving a bed
+        // accelerating against the fluid; src/README.md, coupling)
+        bool fresh = inContact[i] && !previousContact_[i];
+        scalar inertiaMass = ma;
+        if (inertia && s.impactInertia == impact::isolated)
+        {
+            inertiaMass = Ca*unitMass;
+            if (ma > b.mass() + 2*inertiaMass)
+            {
+                inertia = false;
+            }
+            else
+            {
+                fresh = fresh || previousContact_[i];
+            }
+        }
         b.fluid = fluidLoad::stabilised
         (
-            F, T, ma, Ca*unitMass, impactInertia && !inContact[i], Ia,
+            F, T, inertia ? inertiaMass : ma, Ca*unitMass, inertia, Ia,
             deltaT, dem.time(),
-            b.velocity, landed ? b.velocity : c(previousVelocity_[i]),
+            b.velocity, fresh ? b.velocity : c(previousVelocity_[i]),
             b.angularVelocity,
-            landed ? b.angularVelocity : c(previousAngularVelocity_[i])
+            fresh ? b.angularVelocity : c(previousAngularVelocity_[i])
         );
         previousContact_[i] = inContact[i];
         previousVelocity_[i] = v(b.velocity);
@@ -450,6 +491,18 @@ void Foam::immersedFluidCoupling::fluidLoads
     }
     reportAddedMass(Ca, U.time().value());
     seconds_ += timer.elapsedTime();
+}
+
+
+void Foam::immersedFluidCoupling::noteContacts(demSolver& dem)
+{
+    const std::vector<char>& touched = dem.touched();
+    forAll(recentContacts_, i)
+    {
+        const bool t = size_t(i) < touched.size() && touched[i];
+        recentContacts_[i] = ((recentContacts_[i] << 1) | label(t)) & allSteps;
+    }
+    dem.clearTouched();
 }
 
 
@@ -524,6 +577,7 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(addedInertia_, measuredAddedMass());
     remap(reportedAddedMass_, scalar(0));
     remap(previousContact_, false);
+    remap(recentContacts_, allSteps);
     for (label i = firstNew; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -561,6 +615,7 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("innerMomentum", innerMomentum_[i]);
     os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
     os.writeEntry("inContact", previousContact_[i]);
+    os.writeEntry("recentContacts", recentContacts_[i]);
     measuredAddedMass::fields(addedMass_[i], measuredWriter{os, "addedMass"});
     measuredAddedMass::fields(addedInertia_[i], measuredWriter{os, "addedInertia"});
 }
@@ -576,6 +631,8 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
     // Restart files written before it have none: in contact (the
     // extrapolation kept, as it was before)
     previousContact_[i] = d.getOrDefault<bool>("inContact", true);
+    // (written before it: as a new body)
+    recentContacts_[i] = d.getOrDefault<label>("recentContacts", allSteps);
     // Restart files written before the measurement have none: it starts
     // again from nothing
     addedMass_[i].reset();

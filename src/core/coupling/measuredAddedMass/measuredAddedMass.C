@@ -10,8 +10,7 @@ void measuredAddedMass::record
 (
     const vec3& F,
     const vec3& a,
-    const double floor,
-    const bool significantOnly
+    const double floor
 )
 {
     if (skip_ > 0)
@@ -43,9 +42,10 @@ void measuredAddedMass::record
             n > 3 && std::atanh(rho)*std::sqrt(n - 3) >= minSignificance;
         // Only changes of force that follow the changes of acceleration
         // tell M
-        if (sumaa_ > floor && (significant || !significantOnly))
+        if (sumaa_ > floor)
         {
             value_ = std::max(0.0, sumFa_/sumaa_);
+            if (significant) significantValue_ = value_;
         }
     }
     lastForce_ = F;
@@ -58,10 +58,12 @@ double measuredAddedMass::stabilisation
 (
     const double m,
     const double floor,
-    const double cap
+    const double cap,
+    const bool significantOnly
 ) const
 {
-    return value_ > m ? std::max(floor, std::min(value_, cap)) : floor;
+    const double M = value(significantOnly);
+    return M > m ? std::max(floor, std::min(M, cap)) : floor;
 }
 
 } // End namespace immersedDEM

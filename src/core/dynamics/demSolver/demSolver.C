@@ -1228,6 +1228,13 @@ void demSolver::computeContacts()
     }
     next.finish();
     history_.swap(next);
+    touched_.resize(bodies_.size(), 0);
+    for (size_t k = 0; k < history_.size(); ++k)
+    {
+        const auto p = history_.key(k);
+        touched_[p.first] = 1;
+        touched_[p.second] = 1;
+    }
     forcesCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

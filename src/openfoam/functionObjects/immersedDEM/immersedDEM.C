@@ -202,7 +202,10 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
-    impactInertia_ = dict.getOrDefault<Switch>("impactInertia", false);
+    impactInertia_ = immersedDEMChecks::oneOfOrDefault
+    (
+        dict, "impactInertia", {"isolated", "yes", "no"}, "isolated"
+    );
     UName_ = dict.getOrDefault<word>("U", "U");
     setViscosity();
     return true;
@@ -254,9 +257,15 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
+        using impact = immersedFluidCoupling::settings::impact;
         state_.fluidLoads
         (
-            *U, deltaT, {rhoInf_, Ca_, measureAddedMass_, impactInertia_}
+            *U, deltaT,
+            {
+                rhoInf_, Ca_, measureAddedMass_,
+                impactInertia_ == "yes" ? impact::yes
+              : impactInertia_ == "no" ? impact::no : impact::isolated
+            }
         );
     }
     else if (!warnedNoForcing_)
@@ -317,6 +326,9 @@ bool Foam::functionObjects::immersedDEM::execute()
             << ": " << err.what() << exit(FatalError);
     }
     const scalar demSeconds = demTimer.elapsedTime();
+    // Which bodies had a contact in this step (before bodies leave or
+    // enter: the DEM's marks are by index)
+    state_.coupling().noteContacts(state_.dem());
 
     // Bodies leaving (removal) and entering (insertion over time) at the
     // end of the step: projected, in the rows of this time
