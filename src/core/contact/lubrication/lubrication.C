@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <vector>
 #include <cmath>
 
 namespace immersedDEM
@@ -41,19 +42,23 @@ closestApproach sphereAgainst
 
 //- The footprint of a mesh's face turned towards the other body (d in
 //  the mesh's frame, low its least corner along d) into a, if smaller
-//  than the one a holds. The band is at least the gap: a tilted film
-//  carries its pressure where the gap is within about twice its least
+//  than the one a holds; its mean height added to a's. The band takes
+//  the whole face (a tenth of the body's bounding radius: a face tilted
+//  by the angle limit, 0.05 rad, across the body) and at least the gap:
+//  a face tilted against the other is a wedge (lubrication::wedge)
 bool setFootprint
 (
     closestApproach& a, const triangleBVH& T, const bodyPose& p,
-    const vec3& d, double low, double band
+    const vec3& d, double low, double band, double radius
 )
 {
-    const triangleBVH::footprint f = T.footprintBelow(d, low, band);
+    const triangleBVH::footprint f =
+        T.footprintBelow(d, low, std::max({band, a.gap, 0.1*radius}));
     if (!(f.area > 0))
     {
         return false;
     }
+    a.footprintHeight += f.height;
     if (a.footprintArea > 0 && a.footprintArea <= f.area)
     {
         return true;
@@ -61,6 +66,7 @@ bool setFootprint
     const mat3& R = p.rotation();
     a.footprintArea = f.area;
     a.footprintSpread = R*f.spread*R.transpose();
+    a.footprintCentre = p.toWorld(f.centroid);
     return true;
 }
 
@@ -69,7 +75,7 @@ bool setFootprint
 closestApproach planeAgainstMesh
 (
     const bodyPose& pP, const triangleBVH& tB, const bodyPose& pB, double cap,
-    double band
+    double band, double radius
 )
 {
     closestApproach a;
@@ -95,7 +101,7 @@ closestApproach planeAgainstMesh
     }
     a.pointB = pB.toWorld(mean);
     a.pointA = a.pointB - n.dot(a.pointB - pP.position())*n;
-    setFootprint(a, tB, pB, nB, low, std::max(band, a.gap));
+    setFootprint(a, tB, pB, nB, low, band, radius);
     return a;
 }
 
@@ -165,14 +171,16 @@ closestApproach lubrication::approach
     {
         return planeAgainstMesh
         (
-            pA, *tB, pB, cap, std::min(0.1*cap, 1e-2*B.boundingRadius())
+            pA, *tB, pB, cap, std::min(0.1*cap, 1e-2*B.boundingRadius()),
+            B.boundingRadius()
         );
     }
     if (shapeAs<halfSpaceShape>(B) && tA)
     {
         closestApproach a = planeAgainstMesh
         (
-            pB, *tA, pA, cap, std::min(0.1*cap, 1e-2*A.boundingRadius())
+            pB, *tA, pA, cap, std::min(0.1*cap, 1e-2*A.boundingRadius()),
+            A.boundingRadius()
         );
         std::swap(a.pointA, a.pointB);
         a.normal = -a.normal;
@@ -255,7 +263,7 @@ closestApproach lubrication::approach
         int parts = 0, flat = 0;
         const bool wallA = shapeAs<wallMeshShape>(A) != nullptr;
         const bool wallB = shapeAs<wallMeshShape>(B) != nullptr;
-        auto face = [&](const triangleBVH& T, const bodyPose& p, const vec3& dir, const vec3& shift)
+        auto face = [&](const triangleBVH& T, const bodyPose& p, const vec3& dir, const vec3& shift, double radius)
         {
             const vec3 d = p.vectorToBody(dir);
             const double low = T.minAlong(d);
@@ -265,15 +273,16 @@ closestApproach lubrication::approach
                 sum += p.toWorld(mean) + shift;
                 ++parts;
             }
-            flat += setFootprint(a, T, p, d, low, std::max(band, a.gap));
+            flat += setFootprint(a, T, p, d, low, band, radius);
         };
-        if (!wallB) face(*tB, pB, a.normal, -0.5*a.gap*a.normal);
-        if (!wallA) face(*tA, pA, -a.normal, 0.5*a.gap*a.normal);
+        if (!wallB) face(*tB, pB, a.normal, -0.5*a.gap*a.normal, B.boundingRadius());
+        if (!wallA) face(*tA, pA, -a.normal, 0.5*a.gap*a.normal, A.boundingRadius());
         if (flat < (wallA || wallB ? 1 : 2))
         {
             // A face against an edge or a corner: no parallel film
             a.footprintArea = 0;
             a.footprintSpread = mat3::Zero();
+            a.footprintHeight = 0;
         }
         if (parts == (wallA || wallB ? 1 : 2))
         {
@@ -299,6 +308,89 @@ mat3 lubrication::curvatureNear(const shape& S, const bodyPose& p, const vec3& x
         return mat3::Zero();
     }
     return S.closest(p, x).curvature;
+}
+
+
+lubrication::wedgeFactors lubrication::wedgeIntegrated(const double ratio)
+{
+    wedgeFactors w;
+    if (!(ratio > 1))
+    {
+        return w;
+    }
+    // h = 1 + (ratio - 1) s on s in [0, 1]; the moments I_k = int s^k/h^3
+    // ds, integrated in t = ln h (smooth: the integrand is s^k e^(-2t)
+    // dt/(ratio - 1)) by 4-point Gauss-Legendre on 64 intervals
+    const double T = std::log(ratio);
+    double I[5] = {0, 0, 0, 0, 0};
+    const double xg[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+    const double wg[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+    const int n = 64;
+    for (int i = 0; i < n; ++i)
+    {
+        for (int g = 0; g < 4; ++g)
+        {
+            const double t = T*(i + 0.5*(1 + xg[g]))/n;
+            const double s = std::expm1(t)/(ratio - 1);
+            const double f = wg[g]*0.5*T/n*std::exp(-2*t)/(ratio - 1);
+            double sk = 1;
+            for (double& Ik : I)
+            {
+                Ik += f*sk;
+                sk *= s;
+            }
+        }
+    }
+    // The film for dh/dt = -(a + b (s - 1/2)): h^3 p' = C1 - J, J = c1 s
+    // + c2 s^2 (c1 = 12 (a - b/2), c2 = 6 b), p(0) = p(1) = 0; force int
+    // p ds and moment int (s - 1/2) p ds, by parts in the moments
+    auto film = [&I](double a, double b, double& F, double& M)
+    {
+        const double c1 = 12*(a - 0.5*b), c2 = 6*b;
+        const double C1 = (c1*I[1] + c2*I[2])/I[0];
+        F = C1*(I[0] - I[1]) - c1*(I[1] - I[2]) - c2*(I[2] - I[3]);
+        M = -0.5*(C1*(I[2] - I[1]) - c1*(I[3] - I[2]) - c2*(I[4] - I[3]));
+    };
+    double Fa, Ma, Fb, Mb;
+    film(1, 0, Fa, Ma);
+    film(0, 1, Fb, Mb);
+    // Parallel plates at the mean gap hm: F = 1/hm^3, M = 1/(60 hm^3)
+    const double hm = 0.5*(1 + ratio), hm3 = hm*hm*hm;
+    w.normal = Fa*hm3;
+    w.tilt = 60*Mb*hm3;
+    w.offset = -Ma/Fa;
+    return w;
+}
+
+
+lubrication::wedgeFactors lubrication::wedge(const double ratio)
+{
+    // Nodes at ln(ratio) = k ln(1e4)/nodes
+    static constexpr int nodes = 96;
+    static const double top = std::log(1e4);
+    static const std::vector<wedgeFactors> table = []
+    {
+        std::vector<wedgeFactors> t(nodes + 1);
+        for (int k = 0; k <= nodes; ++k)
+        {
+            t[k] = wedgeIntegrated(std::exp(k*top/nodes));
+        }
+        return t;
+    }();
+    if (!(ratio > 1))
+    {
+        return table[0];
+    }
+    const double x = std::min(std::log(ratio), top)/top*nodes;
+    const int k = std::min(int(x), nodes - 1);
+    const double f = x - k;
+    const wedgeFactors& p = table[k];
+    const wedgeFactors& q = table[k + 1];
+    wedgeFactors w;
+    w.normal = p.normal + f*(q.normal - p.normal);
+    w.tilt = p.tilt + f*(q.tilt - p.tilt);
+    w.offset = p.offset + f*(q.offset - p.offset);
+    return w;
 }
 
 

@@ -740,7 +740,8 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
             (
                 A, B, 0.5*(pa + pb), n, gap, f.radius, hAct,
                 ls.roughness*effectiveRadius(ia, ib), f.footprintArea,
-                RA*f.footprintSpread*RA.transpose()
+                RA*f.footprintSpread*RA.transpose(), f.footprintHeight,
+                A.pose.toWorld(f.footprintCentre)
             );
         }
         return;
@@ -814,12 +815,14 @@ void demSolver::lubricatePair(int ia, int ib, size_t contactsFrom)
         f.footprintArea = c.footprintArea;
         f.footprintSpread =
             A.pose.rotation().transpose()*c.footprintSpread*A.pose.rotation();
+        f.footprintHeight = c.footprintHeight;
+        f.footprintCentre = A.pose.toBody(c.footprintCentre);
         f.count = 0;
     }
     applyFilm
     (
         A, B, x, n, c.gap, R, hAct, ls.roughness*Rcap, c.footprintArea,
-        c.footprintSpread
+        c.footprintSpread, c.footprintHeight, c.footprintCentre
     );
 }
 
@@ -839,43 +842,59 @@ double demSolver::filmShare(const rigidBody& A, const rigidBody& B) const
 }
 
 
-vec3 demSolver::tiltFilmTorque
-(
-    const rigidBody& A, const rigidBody& B,
-    const lubrication::tangentAxes& axes, const lubrication::flatFilm& flat,
-    double dt
-) const
-{
-    const vec3* e = axes.e;
-    double c[2] = {flat.tilt1, flat.tilt2};
-    const vec3 w = B.angularVelocity - A.angularVelocity;
-    vec3 T = vec3::Zero();
-    for (int i = 0; i < 2; ++i)
-    {
-        // At most the whole relative tilting in one step, as the normal
-        // film (the pair's moment of inertia about e)
-        const double inv = A.inverseInertiaAlong(e[i]) + B.inverseInertiaAlong(e[i]);
-        if (inv > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
-        {
-            c[i] = std::min(c[i], 1/(inv*dt));
-        }
-        T -= c[i]*w.dot(e[i])*e[i];
-    }
-    return T;
-}
-
-
 void demSolver::applyFilm
 (
     const rigidBody& A, const rigidBody& B, const vec3& x, const vec3& n,
     double gap, double R, double hAct, double hRough,
-    double footprintArea, const mat3& footprintSpread
+    double footprintArea, const mat3& footprintSpread,
+    double footprintHeight, const vec3& footprintCentre
 )
 {
     double coeff = lubrication::coefficient
     (
         settings_.lubrication.viscosity, R, gap, hAct, hRough
     );
+    // Nearly parallel flat faces: the squeeze film of their footprint
+    // when stronger than the curvature's (the 1/h^3 of parallel plates),
+    // at their mean gap; tilted against each other, a wedge from the
+    // closest gap to twice the mean's excess over it: its factors, and
+    // the force at its pressure centre, from the footprint's centre
+    // towards the closest points (x, at about half the footprint's length
+    // from it)
+    lubrication::tangentAxes axes;
+    lubrication::flatFilm flat;
+    vec3 at = x;
+    if (footprintArea > 0)
+    {
+        axes = lubrication::principalInPlane(footprintSpread, n);
+        const double hMin = std::max(gap, std::min(hRough, hAct));
+        const double height = std::max(footprintHeight, 0.0);
+        flat = lubrication::flatCoefficients
+        (
+            settings_.lubrication.viscosity, footprintArea, axes.s[0],
+            axes.s[1], gap + height, hAct, hRough
+        );
+        const lubrication::wedgeFactors w = lubrication::wedge(1 + 2*height/hMin);
+        // The centre on the film's mid-plane, and the direction of the
+        // closest gap from it
+        const vec3 centre = footprintCentre + n.dot(x - footprintCentre)*n;
+        vec3 thin = x - centre;
+        thin -= n.dot(thin)*n;
+        const double thinLength = thin.norm();
+        const vec3 g = thinLength > 0 ? vec3(thin/thinLength) : vec3::Zero();
+        flat.normal *= w.normal;
+        // The tilt across the gradient takes the wedge's factor, about it
+        // the normal film's
+        const double across1 = n.cross(axes.e[0]).dot(g);
+        const double across2 = n.cross(axes.e[1]).dot(g);
+        flat.tilt1 *= w.normal + (w.tilt - w.normal)*across1*across1;
+        flat.tilt2 *= w.normal + (w.tilt - w.normal)*across2*across2;
+        if (flat.normal > coeff)
+        {
+            coeff = flat.normal;
+            at = centre + 2*w.offset*thinLength*g;
+        }
+    }
     // Bodies carrying their added mass m_a as inertia (fluidLoad.H;
     // rigidBodyIntegrator): the film's force is scaled so that it slows
     // the approach as it would bodies carrying only their nominal added
@@ -883,52 +902,64 @@ void demSolver::applyFilm
     // coupling's stability; the film is below the mesh). With the damper
     // both are 0: no scaling
     const double invMass =
-        inverseMassAlong(A, x, n, A.fluid.addedMass)
-      + inverseMassAlong(B, x, n, B.fluid.addedMass);
+        inverseMassAlong(A, at, n, A.fluid.addedMass)
+      + inverseMassAlong(B, at, n, B.fluid.addedMass);
     const double invNominal =
-        inverseMassAlong(A, x, n, A.fluid.nominalAddedMass)
-      + inverseMassAlong(B, x, n, B.fluid.nominalAddedMass);
-    // Nearly parallel flat faces: the squeeze film of their footprint
-    // when stronger than the curvature's (the 1/h^3 of parallel plates)
-    lubrication::tangentAxes axes;
-    lubrication::flatFilm flat;
-    if (footprintArea > 0)
-    {
-        axes = lubrication::principalInPlane(footprintSpread, n);
-        flat = lubrication::flatCoefficients
-        (
-            settings_.lubrication.viscosity, footprintArea, axes.s[0],
-            axes.s[1], gap, hAct, hRough
-        );
-        coeff = std::max(coeff, flat.normal);
-    }
+        inverseMassAlong(A, at, n, A.fluid.nominalAddedMass)
+      + inverseMassAlong(B, at, n, B.fluid.nominalAddedMass);
     if (invMass > 0)
     {
         coeff *= invNominal/invMass;
     }
-    // The damper removes at most the whole normal approach in one step,
-    // and a body's films together at most its whole velocity: each film
-    // a share 1/n of it, n the most films either body may have (films
-    // limited each to the whole made a body between three faces
-    // overshoot, and grow: bodies of a pile spun up to 1.7 rad/s)
+    // The film's dampers (the normal one at its point, the tilt about the
+    // footprint's axes) together remove at most the whole relative motion
+    // in one step, and a body's films together at most its whole
+    // velocity: each film a share 1/n of it, n the most films either body
+    // may have (films limited each to the whole made a body between three
+    // faces overshoot, and grow: bodies of a pile spun up to 1.7 rad/s).
+    // Together: the normal force at the wedge's pressure centre, off the
+    // bodies' centres, also turns them, so dampers limited each alone to
+    // the whole of their own motion take out more than the whole of a
+    // coupled one (up to 1 + the coupling) and reverse it. The rates
+    // dt c_k K_kk (K_kk the pair's inverse mass or moment of inertia
+    // along damper k) are scaled so that their sum is at most the share:
+    // the sum bounds the largest rate of the coupled dampers (the trace
+    // of D^1/2 K D^1/2, K = J M^-1 J^T), so no motion is reversed
     const double dt = lastDt_ > 0 ? lastDt_ : timeStep();
     const double share = filmShare(A, B);
-    if (invMass > 0 && dt > 0 && dt < std::numeric_limits<double>::max())
+    double tilt[2] = {flat.tilt1, flat.tilt2};
+    if (dt > 0 && dt < std::numeric_limits<double>::max())
     {
-        coeff = std::min(coeff, share/(invMass*dt));
+        double rate = std::max(invMass, 0.0)*coeff*dt;
+        for (int k = 0; k < 2; ++k)
+        {
+            rate +=
+                (A.inverseInertiaAlong(axes.e[k]) + B.inverseInertiaAlong(axes.e[k]))
+               *tilt[k]*dt;
+        }
+        if (rate > share)
+        {
+            const double f = share/rate;
+            coeff *= f;
+            tilt[0] *= f;
+            tilt[1] *= f;
+        }
     }
-    const double un = (B.pointVelocity(x) - A.pointVelocity(x)).dot(n);
+    const double un = (B.pointVelocity(at) - A.pointVelocity(at)).dot(n);
     const vec3 F = -coeff*un*n;
     load_.filmForceB += F;
-    load_.filmTorqueB += (x - B.pose.position()).cross(F);
+    load_.filmTorqueB += (at - B.pose.position()).cross(F);
     load_.filmForceA -= F;
-    load_.filmTorqueA -= (x - A.pose.position()).cross(F);
-    if (flat.tilt1 > 0 || flat.tilt2 > 0)
+    load_.filmTorqueA -= (at - A.pose.position()).cross(F);
+    // The tilting film's torque on B (its opposite on A)
+    const vec3 w = B.angularVelocity - A.angularVelocity;
+    vec3 T = vec3::Zero();
+    for (int k = 0; k < 2; ++k)
     {
-        const vec3 T = tiltFilmTorque(A, B, axes, flat, dt/share);
-        load_.filmTorqueB += T;
-        load_.filmTorqueA -= T;
+        T -= tilt[k]*w.dot(axes.e[k])*axes.e[k];
     }
+    load_.filmTorqueB += T;
+    load_.filmTorqueA -= T;
     load_.film = true;
     ++counters_.lubricatedPairs;
 }

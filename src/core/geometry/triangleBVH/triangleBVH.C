@@ -430,7 +430,7 @@ triangleBVH::footprint triangleBVH::footprintBelow
     }
     // Weighted sums of area, first and second moments (about the first
     // corner found, for round-off: the face is small against the body)
-    double A = 0;
+    double A = 0, H = 0;
     vec3 first = vec3::Zero();
     mat3 second = mat3::Zero();
     bool originSet = false;
@@ -472,6 +472,7 @@ triangleBVH::footprint triangleBVH::footprintBelow
         const vec3 sum = a + b + c;
         // Int x x^T dA over a triangle = A/12 (sum of v v^T + s s^T)
         A += w*area;
+        H += w*area*((n.dot(t[0]) + n.dot(t[1]) + n.dot(t[2]))/3 - low);
         first += w*area*sum/3;
         second += w*area/12*(a*a.transpose() + b*b.transpose() + c*c.transpose() + sum*sum.transpose());
     });
@@ -483,6 +484,7 @@ triangleBVH::footprint triangleBVH::footprintBelow
     f.area = A;
     f.centroid = origin + m;
     f.spread = second/A - m*m.transpose();
+    f.height = H/A;
     return f;
 }
 
