@@ -207,6 +207,7 @@ bool Foam::immersedDEMState::readRestart()
     };
 
     const dictionary& bd = dict.subDict("bodies");
+    loadsRestored_ = true;
     forAll(bodies, i)
     {
         rigidBody& b = bodies[i];
@@ -233,12 +234,16 @@ bool Foam::immersedDEMState::readRestart()
         fluidLoad::fields(b.fluid, fluidLoadReader{d});
         coupling_->readBody(d, i);
         // The loads of the step before (absent from older states): the
-        // first output row carries them; the DEM recomputes them anyway
+        // first output row carries them, and the first DEM step kicks with
+        // them (resumeLoads) as the run that wrote them did; without them
+        // the DEM computes them again
         vector F;
-        if (d.readIfPresent("contactForce", F)) b.contactForce = c(F);
-        if (d.readIfPresent("contactTorque", F)) b.contactTorque = c(F);
-        if (d.readIfPresent("lubricationForce", F)) b.lubricationForce = c(F);
-        if (d.readIfPresent("lubricationTorque", F)) b.lubricationTorque = c(F);
+        label loads = 0;
+        if (d.readIfPresent("contactForce", F)) { b.contactForce = c(F); ++loads; }
+        if (d.readIfPresent("contactTorque", F)) { b.contactTorque = c(F); ++loads; }
+        if (d.readIfPresent("lubricationForce", F)) { b.lubricationForce = c(F); ++loads; }
+        if (d.readIfPresent("lubricationTorque", F)) { b.lubricationTorque = c(F); ++loads; }
+        loadsRestored_ = loadsRestored_ && loads == 4;
         if (d.readIfPresent("externalForce", F)) b.externalForce = c(F);
         if (d.readIfPresent("externalTorque", F)) b.externalTorque = c(F);
     }

@@ -1755,8 +1755,10 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
     for (int i = 0; i < n; ++i)
     {
         // The contacts at the end of an advance (where a run writes and
-        // restarts) come from full evaluations, as at a restart
-        if (i == n - 1) fullNext_ = true;
+        // restarts) come from full evaluations, and so do those of its
+        // first step, as after a restart (which has no reuse records):
+        // a restarted run continues the written one exactly
+        if (i == 0 || i == n - 1) fullNext_ = true;
         step(dt);
         if (afterStep) afterStep();
     }

@@ -306,6 +306,7 @@ bool Foam::functionObjects::immersedDEM::execute()
         // contacts' rows when asked for (the DEM's time, not the CFD's:
         // rows inside the CFD step)
         const bool rows = output_ && contactsEverySubStep_;
+        state_.resumeLoads();
         nSteps = state_.dem().advance
         (
             deltaT,
