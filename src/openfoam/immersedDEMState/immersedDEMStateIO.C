@@ -70,6 +70,9 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
         os  << "// immersedDEM restart state: body states, fluid momenta inside"
             << " the bodies and contact histories" << nl << nl;
         os.writeEntry("time", dem_->time());
+        // Whether the next DEM step kicks with the loads below, as written
+        // (no: bodies entered or left in the step, and it computes them)
+        os.writeEntry("loadsCurrent", Switch(dem_->loadsCurrent()));
         os  << nl << "bodies" << nl << token::BEGIN_BLOCK << incrIndent << nl;
         forAll(dem_->bodies(), i)
         {
@@ -207,7 +210,8 @@ bool Foam::immersedDEMState::readRestart()
     };
 
     const dictionary& bd = dict.subDict("bodies");
-    loadsRestored_ = true;
+    // (states written before it have none: the DEM computes the loads)
+    loadsRestored_ = dict.getOrDefault<Switch>("loadsCurrent", false);
     forAll(bodies, i)
     {
         rigidBody& b = bodies[i];
@@ -235,8 +239,9 @@ bool Foam::immersedDEMState::readRestart()
         coupling_->readBody(d, i);
         // The loads of the step before (absent from older states): the
         // first output row carries them, and the first DEM step kicks with
-        // them (resumeLoads) as the run that wrote them did; without them
-        // the DEM computes them again
+        // them (resumeLoads) where the run that wrote them would have
+        // (loadsCurrent); otherwise the DEM computes them again, as that
+        // run did
         vector F;
         label loads = 0;
         if (d.readIfPresent("contactForce", F)) { b.contactForce = c(F); ++loads; }
