@@ -411,6 +411,46 @@ TEST(shapeQueries, sphereVersusFineIcosphere)
 }
 
 
+TEST(shapeQueries, closestNearIsTheFullSearchWithinItsRadius)
+{
+    // The octree's search of a mesh within a cell's ball (closestNear):
+    // where the surface comes within the radius it finds what the full
+    // search finds, bit for bit (the same closest point, distance and
+    // normal); where it does not, the full search's point is indeed
+    // farther. Points and radii spread across both cases, posed bodies
+    const triangleMeshShape& L = LShape();
+    std::mt19937 gen(11);
+    int near = 0, far = 0;
+    for (int i = 0; i < 2000; ++i)
+    {
+        const bodyPose P(randomVec(gen, -1, 1), randomQuat(gen));
+        const vec3 x = P.toWorld(randomVec(gen, -0.5, 2.5));
+        const double radius = std::uniform_real_distribution<double>(0, 1)(gen);
+        const surfacePoint full = L.closest(P, x);
+        surfacePoint sp;
+        sp.distance = 1234;
+        const bool found =
+            L.closestNear(P, x, radius, std::numeric_limits<double>::max(), sp);
+        if (found)
+        {
+            ++near;
+            EXPECT_LE(std::abs(full.distance), radius*(1 + 1e-6));
+            EXPECT_EQ(sp.distance, full.distance);
+            EXPECT_EQ(sp.point, full.point);
+            EXPECT_EQ(sp.normal, full.normal);
+        }
+        else
+        {
+            ++far;
+            EXPECT_GT(std::abs(full.distance), radius);
+            EXPECT_EQ(sp.distance, 1234);
+        }
+    }
+    EXPECT_GT(near, 200);
+    EXPECT_GT(far, 200);
+}
+
+
 TEST(shapeQueries, concurrentQueriesMatchSerial)
 {
     // Queries are const and may run concurrently

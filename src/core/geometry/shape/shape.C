@@ -92,4 +92,20 @@ surfacePoint shape::closest
     return toWorld(pose, closest(pose.toBody(p), distanceBound));
 }
 
+
+bool shape::closestNear
+(
+    const bodyPose& pose, const vec3& p, double radius, double distanceBound,
+    surfacePoint& sp
+) const
+{
+    surfacePoint body;
+    if (!closestNear(pose.toBody(p), radius, distanceBound, body))
+    {
+        return false;
+    }
+    sp = toWorld(pose, body);
+    return true;
+}
+
 } // End namespace immersedDEM

@@ -238,6 +238,30 @@ surfacePoint surfaceDistance::closest(const vec3& p, double maxDistSqr, vec3* ps
     {
         h = bvh_.closest(p);
     }
+    return pointOf(p, h, pseudoOut);
+}
+
+
+bool surfaceDistance::closestNear
+(
+    const vec3& p, double maxDistSqr, surfacePoint& sp, vec3* pseudoOut
+) const
+{
+    const triangleBVH::hit h = bvh_.closest(p, maxDistSqr);
+    if (h.face < 0)
+    {
+        return false;
+    }
+    sp = pointOf(p, h, pseudoOut);
+    return true;
+}
+
+
+surfacePoint surfaceDistance::pointOf
+(
+    const vec3& p, const triangleBVH::hit& h, vec3* pseudoOut
+) const
+{
     const triFace& f = faces_[h.face];
     const vec3& pseudo =
         h.feature == 0 ? faceNormal_[h.face]

@@ -666,16 +666,20 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
         return best;
     }
 
-    int stack[128];
+    // Each node with its box's squared distance, computed once: when its
+    // parent chose the order of its children
+    struct entry { int node; double d2; };
+    entry stack[128];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {0, boxDistSqr(p, nodes_[0].lo, nodes_[0].hi)};
     while (top)
     {
-        const node& nd = nodes_[stack[--top]];
-        if (boxDistSqr(p, nd.lo, nd.hi) >= best.distSqr)
+        const entry e = stack[--top];
+        if (e.d2 >= best.distSqr)
         {
             continue;
         }
+        const node& nd = nodes_[e.node];
         if (nd.count)
         {
             for (int s = nd.first; s < nd.first + nd.count; ++s)
@@ -701,13 +705,13 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
         const double dr = boxDistSqr(p, nodes_[right].lo, nodes_[right].hi);
         if (dl <= dr)
         {
-            stack[top++] = right;
-            stack[top++] = left;
+            stack[top++] = {right, dr};
+            stack[top++] = {left, dl};
         }
         else
         {
-            stack[top++] = left;
-            stack[top++] = right;
+            stack[top++] = {left, dl};
+            stack[top++] = {right, dr};
         }
     }
     return best;

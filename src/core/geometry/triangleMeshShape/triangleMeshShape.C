@@ -144,13 +144,36 @@ surfacePoint triangleMeshShape::closestWithin(const vec3& p, double maxDistSqr) 
 {
     vec3 pseudo;
     surfacePoint sp = distance_->closest(p, maxDistSqr, &pseudo);
+    settleSign(p, pseudo, sp);
+    return sp;
+}
+
+
+bool triangleMeshShape::closestNear
+(
+    const vec3& p, double radius, double, surfacePoint& sp
+) const
+{
+    // (the slack of closest's bound: found at any distance up to radius)
+    const double b = radius*(1 + 1e-9) + 1e-12*boundingRadius_;
+    vec3 pseudo;
+    if (!distance_->closestNear(p, b*b, sp, &pseudo))
+    {
+        return false;
+    }
+    settleSign(p, pseudo, sp);
+    return true;
+}
+
+
+void triangleMeshShape::settleSign(const vec3& p, const vec3& pseudo, surfacePoint& sp) const
+{
     if (std::abs(sp.distance) <= 1e-9*boundingRadius_)
     {
         // On or within round-off of the surface: the exact test decides
         sp.distance = inside(p) ? -std::abs(sp.distance) : std::abs(sp.distance);
         sp.normal = pseudo;
     }
-    return sp;
 }
 
 

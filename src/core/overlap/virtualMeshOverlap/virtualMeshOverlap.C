@@ -512,11 +512,14 @@ public:
     // level < 0: coarser than h, above the base cells; sum is then null.
     // boundA, boundB: upper bounds of the distances to the surfaces from
     // the parent's queries (the distance is 1-Lipschitz), to prune the
-    // meshes' searches
+    // meshes' searches. sideA, sideB: the side of each surface the
+    // parent's centre is on (1 outside, -1 inside, 0 not known: a root
+    // cell, or a centre on the surface)
     void visit
     (
         const vec3& lo, double s, int level, bool inA, bool inB,
-        double boundA, double boundB, baseCellSum* sum
+        double boundA, double boundB, baseCellSum* sum,
+        int sideA = 0, int sideB = 0
     )
     {
         if (++cells > maxCells_)
@@ -531,20 +534,43 @@ public:
         const vec3 c = lo + vec3::Constant(0.5*s);
         const double r = 0.5*std::sqrt(3.0)*s;
 
+        // A cell whose ball (c, r) no surface enters is wholly on one side
+        // of it. The parent's centre is r from c (r the child's): the
+        // segment between the centres then crosses no surface, and the
+        // cell is on the parent's side. So where the parent's side is
+        // known, a mesh is searched only within r (closestNear), not to
+        // its farther closest point; the cells classified, the points
+        // found, and so the overlap, are those of the full search
         surfacePoint a, b;
         if (!inA)
         {
-            a = A_.closest(pA_, c, boundA);
             ++queries;
-            if (a.distance > r) return;
-            inA = a.distance < -r;
+            if (sideA != 0 && !A_.closestNear(pA_, c, r, boundA, a))
+            {
+                if (sideA > 0) return;
+                inA = true;
+            }
+            else
+            {
+                if (sideA == 0) a = A_.closest(pA_, c, boundA);
+                if (a.distance > r) return;
+                inA = a.distance < -r;
+            }
         }
         if (!inB)
         {
-            b = B_.closest(pB_, c, boundB);
             ++queries;
-            if (b.distance > r) return;
-            inB = b.distance < -r;
+            if (sideB != 0 && !B_.closestNear(pB_, c, r, boundB, b))
+            {
+                if (sideB > 0) return;
+                inB = true;
+            }
+            else
+            {
+                if (sideB == 0) b = B_.closest(pB_, c, boundB);
+                if (b.distance > r) return;
+                inB = b.distance < -r;
+            }
         }
         if (inA && inB)
         {
@@ -604,10 +630,12 @@ public:
             // A child's centre is r/2 from this centre
             const double bA = inA ? 0 : std::abs(a.distance) + 0.5*r;
             const double bB = inB ? 0 : std::abs(b.distance) + 0.5*r;
+            const int sA = inA ? 0 : (a.distance > 0) - (a.distance < 0);
+            const int sB = inB ? 0 : (b.distance > 0) - (b.distance < 0);
             for (int k = 0; k < 8; ++k)
             {
                 const vec3 off((k & 1)*h, ((k >> 1) & 1)*h, ((k >> 2) & 1)*h);
-                visit(lo + off, h, level + 1, inA, inB, bA, bB, sum);
+                visit(lo + off, h, level + 1, inA, inB, bA, bB, sum, sA, sB);
             }
             return;
         }
