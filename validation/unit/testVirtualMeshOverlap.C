@@ -36,6 +36,21 @@ struct spherePair
     {}
 };
 
+// A mesh whose search is always the full one (shape's closestNear: the
+// closest point wherever it is), as the octree searched before it
+// searched a child cell's mesh only within the cell's ball
+struct fullSearchMesh : triangleMeshShape
+{
+    using triangleMeshShape::triangleMeshShape;
+    bool closestNear
+    (
+        const vec3& p, double radius, double distanceBound, surfacePoint& sp
+    ) const override
+    {
+        return shape::closestNear(p, radius, distanceBound, sp);
+    }
+};
+
 } // End anonymous namespace
 
 
@@ -203,4 +218,70 @@ TEST(virtualMesh, normalIsStableUnderSmallPoseChanges)
         }
         previous = n;
     }
+}
+
+
+TEST(virtualMesh, searchWithinTheCellIsTheFullSearch)
+{
+    // The octree searches a child cell's mesh only within the cell's ball
+    // and puts a cell no surface enters on its parent's side: the regions
+    // (volume, point, normal, area, area vector and moment) and the work
+    // must be those of the full search, bit for bit. Two crossing tori
+    // (curved, non-convex, two regions) and a box's corner into a torus,
+    // near the origin and 2.6 m from it (the lattice's round-off there)
+    const triangleSoup torus = primitiveMeshes::torus(0.004, 0.0015, 48, 24);
+    const triangleSoup box = primitiveMeshes::box(vec3(0.003, 0.002, 0.0025));
+    const triangleMeshShape torusA(torus, "torusA"), torusB(torus, "torusB");
+    const fullSearchMesh fullA(torus, "torusA"), fullB(torus, "torusB");
+    const triangleMeshShape boxS(box, "box");
+    const fullSearchMesh fullBox(box, "box");
+    // (as overlapConvergenceBenchmark's: B's tube crosses A's twice, 0.4
+    // mm deep; the box's corner into A's tube)
+    const bodyPose pA = torusA.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+    const bodyPose pB = torusB.poseFromFilePlacement
+    (
+        bodyPose::axisAngle(vec3(1, 0, 0), M_PI/2), vec3(2*0.0015 - 0.0004, 0, 0)
+    );
+    const bodyPose pC = boxS.poseFromFilePlacement
+    (
+        bodyPose::axisAngle(vec3(1, -1, 0.3), 0.7), vec3(0.0048, 0.0046, 0.0031)
+    );
+    const virtualMeshOverlap vm;
+    int compared = 0;
+    for (const vec3& far : {vec3(0, 0, 0), vec3(0.7, -1.3, 2.1)})
+    {
+        const bodyPose M(far, bodyPose::axisAngle(vec3(0.2, 1, -0.4), 0.3));
+        for (int pair = 0; pair < 2; ++pair)
+        {
+            const shape& A = torusA;
+            const shape& fA = fullA;
+            const shape& B = pair == 0 ? static_cast<const shape&>(torusB) : boxS;
+            const shape& fB = pair == 0 ? static_cast<const shape&>(fullB) : fullBox;
+            const bodyPose& PB = pair == 0 ? pB : pC;
+            for (const int L : {2, 4})
+            {
+                const overlapSettings o{h, L};
+                const contactGeometry g = vm.evaluate(A, M*pA, B, M*PB, o);
+                const contactGeometry f = vm.evaluate(fA, M*pA, fB, M*PB, o);
+                ASSERT_EQ(g.regions.size(), f.regions.size());
+                ASSERT_GE(g.regions.size(), pair == 0 ? 2u : 1u);
+                EXPECT_EQ(g.queries, f.queries);
+                EXPECT_EQ(g.leaves, f.leaves);
+                for (size_t k = 0; k < g.regions.size(); ++k)
+                {
+                    const contactRegion& a = g.regions[k];
+                    const contactRegion& b = f.regions[k];
+                    EXPECT_GT(a.volume, 0);
+                    EXPECT_EQ(a.volume, b.volume);
+                    EXPECT_EQ(a.point, b.point);
+                    EXPECT_EQ(a.normal, b.normal);
+                    EXPECT_EQ(a.area, b.area);
+                    EXPECT_EQ(a.areaVector, b.areaVector);
+                    EXPECT_EQ(a.areaMoment, b.areaMoment);
+                    ++compared;
+                }
+            }
+        }
+    }
+    EXPECT_GE(compared, 12);
 }

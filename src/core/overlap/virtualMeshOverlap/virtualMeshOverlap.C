@@ -509,6 +509,44 @@ public:
         facets_(facets)
     {}
 
+    //- The cell (centre c, half-diagonal r) against the surface of S:
+    //  false when it lies wholly outside; else in tells whether wholly
+    //  inside, and sp is the closest point where the surface crosses it.
+    //  A ball no surface enters is wholly on one side of it, and the
+    //  parent's centre is r from c (r the child's): the segment between
+    //  the centres then crosses no surface, and the cell is on the
+    //  parent's side. So where that side is known, a mesh is searched
+    //  only within r (closestNear), not to its farther closest point; the
+    //  cells classified, the points found, and so the overlap, are those
+    //  of the full search. (Searched a hair beyond r, in proportion to
+    //  the centres' distance from the origin: the lattice's coordinates
+    //  are world coordinates, and their round-off moves the two centres
+    //  apart by more than r where the cells are small and far from it)
+    bool classify
+    (
+        const shape& S, const bodyPose& pS, const vec3& c, double r,
+        int side, double bound, surfacePoint& sp, bool& in
+    )
+    {
+        ++queries;
+        const double reach = r + 1e-14*c.cwiseAbs().sum();
+        if (side != 0 && !S.closestNear(pS, c, reach, bound, sp))
+        {
+            in = side < 0;
+            return in;
+        }
+        if (side == 0)
+        {
+            sp = S.closest(pS, c, bound);
+        }
+        if (sp.distance > r)
+        {
+            return false;
+        }
+        in = sp.distance < -r;
+        return true;
+    }
+
     // level < 0: coarser than h, above the base cells; sum is then null.
     // boundA, boundB: upper bounds of the distances to the surfaces from
     // the parent's queries (the distance is 1-Lipschitz), to prune the
@@ -534,44 +572,9 @@ public:
         const vec3 c = lo + vec3::Constant(0.5*s);
         const double r = 0.5*std::sqrt(3.0)*s;
 
-        // A cell whose ball (c, r) no surface enters is wholly on one side
-        // of it. The parent's centre is r from c (r the child's): the
-        // segment between the centres then crosses no surface, and the
-        // cell is on the parent's side. So where the parent's side is
-        // known, a mesh is searched only within r (closestNear), not to
-        // its farther closest point; the cells classified, the points
-        // found, and so the overlap, are those of the full search
         surfacePoint a, b;
-        if (!inA)
-        {
-            ++queries;
-            if (sideA != 0 && !A_.closestNear(pA_, c, r, boundA, a))
-            {
-                if (sideA > 0) return;
-                inA = true;
-            }
-            else
-            {
-                if (sideA == 0) a = A_.closest(pA_, c, boundA);
-                if (a.distance > r) return;
-                inA = a.distance < -r;
-            }
-        }
-        if (!inB)
-        {
-            ++queries;
-            if (sideB != 0 && !B_.closestNear(pB_, c, r, boundB, b))
-            {
-                if (sideB > 0) return;
-                inB = true;
-            }
-            else
-            {
-                if (sideB == 0) b = B_.closest(pB_, c, boundB);
-                if (b.distance > r) return;
-                inB = b.distance < -r;
-            }
-        }
+        if (!inA && !classify(A_, pA_, c, r, sideA, boundA, a, inA)) return;
+        if (!inB && !classify(B_, pB_, c, r, sideB, boundB, b, inB)) return;
         if (inA && inB)
         {
             if (level >= 0)
