@@ -5,6 +5,7 @@
 #include "triangleMeshShape.H"
 #include "sphereShape.H"
 #include "primitiveMeshes.H"
+#include "triangleBVH.H"
 #include "testHelpers.H"
 
 #include <thread>
@@ -448,6 +449,82 @@ TEST(shapeQueries, closestNearIsTheFullSearchWithinItsRadius)
     }
     EXPECT_GT(near, 200);
     EXPECT_GT(far, 200);
+}
+
+
+TEST(shapeQueries, treeSearchIsEveryTriangleTried)
+{
+    // triangleBVH::closest prunes by boxes and by the triangles' planes:
+    // its closest squared distance must be exactly the least over every
+    // triangle, and its triangle the first that attains it in the tree's
+    // own order (ties: points on shared edges and corners). A torus
+    // (curved, with a hole) and a box, points near and far from them,
+    // bounded and unbounded searches
+    const triangleSoup surfaces[2] =
+    {
+        primitiveMeshes::torus(1.0, 0.4, 32, 16),
+        primitiveMeshes::box(vec3(1.0, 0.6, 0.3))
+    };
+    std::mt19937 gen(5);
+    int bounded = 0;
+    for (const triangleSoup& s : surfaces)
+    {
+        const triangleBVH tree(s);
+        for (int i = 0; i < 3000; ++i)
+        {
+            const double spread = i % 2 ? 0.05 : 2.0;
+            const vec3 x =
+                s.points[s.faces[i % s.faces.size()][0]] + randomVec(gen, -spread, spread);
+            double least = std::numeric_limits<double>::max();
+            int first = -1;
+            for (size_t f = 0; f < s.faces.size(); ++f)
+            {
+                int feature;
+                const triFace& t = s.faces[f];
+                const double d2 =
+                    (
+                        triangleBVH::closestOnTriangle
+                        (
+                            x, s.points[t[0]], s.points[t[1]], s.points[t[2]], feature
+                        ) - x
+                    ).squaredNorm();
+                if (d2 < least)
+                {
+                    least = d2;
+                    first = int(f);
+                }
+            }
+            const triangleBVH::hit h = tree.closest(x);
+            ASSERT_GE(h.face, 0);
+            EXPECT_EQ(h.distSqr, least);
+            // (the face may differ only where another ties exactly)
+            if (h.face != first)
+            {
+                int feature;
+                const triFace& t = s.faces[h.face];
+                EXPECT_EQ
+                (
+                    (
+                        triangleBVH::closestOnTriangle
+                        (
+                            x, s.points[t[0]], s.points[t[1]], s.points[t[2]], feature
+                        ) - x
+                    ).squaredNorm(),
+                    least
+                );
+            }
+            // A bound above the least: the same answer; below: none
+            const triangleBVH::hit b = tree.closest(x, least*(1 + 1e-9) + 1e-300);
+            EXPECT_EQ(b.face, h.face);
+            EXPECT_EQ(b.distSqr, h.distSqr);
+            if (least > 0)
+            {
+                EXPECT_LT(tree.closest(x, 0.999*least).face, 0);
+                ++bounded;
+            }
+        }
+    }
+    EXPECT_GT(bounded, 5000);
 }
 
 

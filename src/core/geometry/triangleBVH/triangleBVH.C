@@ -650,9 +650,15 @@ triangleBVH::triangleBVH(const triangleSoup& s)
     }
     // Store the triangles in leaf order for locality
     faceOfSlot_ = order;
+    planeOfSlot_.resize(n);
     for (int i = 0; i < n; ++i)
     {
         corners_[i] = corners[order[i]];
+        const auto& t = corners_[i];
+        const vec3 a = (t[1] - t[0]).cross(t[2] - t[0]);
+        const double an = a.norm();
+        const vec3 nrm = an > 0 ? vec3(a/an) : vec3(vec3::Zero());
+        planeOfSlot_[i] = {nrm.x(), nrm.y(), nrm.z(), nrm.dot(t[0])};
     }
 }
 
@@ -684,6 +690,19 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
         {
             for (int s = nd.first; s < nd.first + nd.count; ++s)
             {
+                // The distance to the triangle's plane bounds the one to
+                // the triangle from below: a triangle whose plane is
+                // farther than the best so far is passed over (less the
+                // plane's round-off, so that the answer stays the one of
+                // every triangle tried, ties included)
+                const auto& pl = planeOfSlot_[s];
+                const double h =
+                    std::abs(pl[0]*p.x() + pl[1]*p.y() + pl[2]*p.z() - pl[3])
+                  - 1e-12*(std::abs(pl[3]) + p.cwiseAbs().sum());
+                if (h > 0 && h*h > best.distSqr)
+                {
+                    continue;
+                }
                 int feature;
                 const auto& t = corners_[s];
                 const vec3 q = closestOnTriangle(p, t[0], t[1], t[2], feature);
