@@ -678,6 +678,8 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
     entry stack[128];
     int top = 0;
     stack[top++] = {0, boxDistSqr(p, nodes_[0].lo, nodes_[0].hi)};
+    // (the scale of the planes' round-off at p, below)
+    const double pScale = p.cwiseAbs().sum();
     while (top)
     {
         const entry e = stack[--top];
@@ -698,7 +700,7 @@ triangleBVH::hit triangleBVH::closest(const vec3& p, double maxDistSqr) const
                 const auto& pl = planeOfSlot_[s];
                 const double h =
                     std::abs(pl[0]*p.x() + pl[1]*p.y() + pl[2]*p.z() - pl[3])
-                  - 1e-12*(std::abs(pl[3]) + p.cwiseAbs().sum());
+                  - 1e-12*(std::abs(pl[3]) + pScale);
                 if (h > 0 && h*h > best.distSqr)
                 {
                     continue;
