@@ -52,49 +52,6 @@ std::unique_ptr<contactLaw> contactLaw::New(const std::string& type)
 }
 
 
-vec3 contactLaw::tangentialForce
-(
-    const contactInput& in,
-    contactHistory& h,
-    double stiffness,
-    double dampingT,
-    double normalForce,
-    bool& sliding
-)
-{
-    const vec3& n = in.region.normal;
-    const vec3 v = in.relativeVelocity;
-    const vec3 vt = v - v.dot(n)*n;
-
-    // Turn the spring into the current contact plane, keeping its length
-    vec3 xi = h.tangentialSpring;
-    const double len = xi.norm();
-    if (len > 0)
-    {
-        const vec3 inPlane = xi - xi.dot(n)*n;
-        const double lp = inPlane.norm();
-        xi = lp > 1e-12*len ? vec3(inPlane*(len/lp)) : vec3(vec3::Zero());
-    }
-    xi += vt*in.dt;
-
-    vec3 ft = -stiffness*xi - dampingT*vt;
-    const double limit = in.material.friction*normalForce;
-    sliding = false;
-    // (squared: a sticking contact, the common one, takes no root)
-    const double fn2 = ft.squaredNorm();
-    if (fn2 > limit*limit || limit < 0)
-    {
-        sliding = true;
-        const double fn = std::sqrt(fn2);
-        ft = fn > 0 ? vec3(ft*(limit/fn)) : vec3(vec3::Zero());
-        // The spring holds what the limit allows, less the damping part
-        xi = stiffness > 0 ? vec3(-(ft + dampingT*vt)/stiffness) : vec3(vec3::Zero());
-    }
-    h.tangentialSpring = xi;
-    return ft;
-}
-
-
 double contactLaw::twistingCouple
 (
     const contactInput& in,

@@ -1,4 +1,5 @@
 #include "demSolver.H"
+#include "demSolverRegion.H"
 #include "rigidBodyIntegrator.H"
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
@@ -592,29 +593,6 @@ void demSolver::applyRegions
 }
 
 
-int demSolver::nearestHistory
-(
-    const contactHistoryTable::range& old, const contactRegion& r, const char* taken
-) const
-{
-    // The history of the nearest region of the last step, if close
-    // (squared distances: the reach is max(h, sqrt(area)))
-    const double h0 = settings_.overlap.h;
-    int best = -1;
-    double bestDist2 = std::max(h0*h0, std::max(r.area, 0.0));
-    for (size_t j = 0; j < old.size(); ++j)
-    {
-        const double d2 = (old.first[j].point - r.point).squaredNorm();
-        if (!(taken && taken[j]) && d2 <= bestDist2)
-        {
-            best = int(j);
-            bestDist2 = d2;
-        }
-    }
-    return best;
-}
-
-
 void demSolver::applyRegion
 (
     int ia, const bodyState& A, int ib, const bodyState& B,
@@ -626,37 +604,13 @@ void demSolver::applyRegion
     // overlap regions: a flat face resting on another stops spinning
     // about its normal (a point's friction has no couple about it). The
     // law on spheres keeps its point contact (as LIGGGHTS's)
-    const bool twisting = !law_->needsSpheres();
-
-    contactHistory& h = next.add(old ? *old : contactHistory());
-    in.region = r;
-    in.relativeVelocity =
-        (B.velocity + B.angularVelocity.cross(r.point - B.position))
-      - (A.velocity + A.angularVelocity.cross(r.point - A.position));
-    // (the record is built from the law's output below: a record made
-    // empty first and then filled was zeroed for nothing, 5% of a sphere
-    // pour)
-    contactOutput f = law_->evaluate(in, h);
-    if (twisting)
-    {
-        const vec3& n = r.normal;
-        const double inverseSpinInertia =
-            bodies_[ia].inverseInertiaAlong(n) + bodies_[ib].inverseInertiaAlong(n);
-        f.couple += contactLaw::twistingCouple
-        (
-            in, h, f.normalForce,
-            (B.angularVelocity - A.angularVelocity).dot(n),
-            inverseSpinInertia > 0 ? 1/inverseSpinInertia : 0
-        )*n;
-    }
-    h.normal = r.normal;
-    h.point = r.point;
-    contacts_.push_back(contactRecord{ia, ib, r, f});
-
-    load_.forceB += f.force;
-    load_.torqueB += (r.point - B.position).cross(f.force) + f.couple;
-    load_.forceA -= f.force;
-    load_.torqueA -= (r.point - A.position).cross(f.force) + f.couple;
+    const contactLaw& law = *law_;
+    applyRegionWith
+    (
+        ia, A, ib, B, r, in, old, next,
+        [&law](const contactInput& i, contactHistory& h) { return law.evaluate(i, h); },
+        !law.needsSpheres()
+    );
 }
 
 
