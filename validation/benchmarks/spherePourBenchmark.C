@@ -259,6 +259,8 @@ int run(const options& o)
         w.pairEvaluations, double(w.pairEvaluations)/std::max(1L, w.steps),
         1e6*w.contactSeconds/std::max(1L, w.pairEvaluations));
     std::printf("  contacts at the end     %zu\n", dem.contacts().size());
+    std::printf("  neighbour lists built   %ld (every %.1f steps)\n",
+        w.broadPhaseBuilds, double(w.steps)/std::max(1L, w.broadPhaseBuilds));
     std::printf("  kinetic energy          translational %.6e J, rotational %.6e J\n",
         st.keTrans, st.keRot);
     std::printf("  height of the centres   mean %.6e m, max %.6e m\n", st.meanHeight, st.maxHeight);
