@@ -220,7 +220,8 @@ void demSolver::sphereSweep(contactHistoryTable& next)
     contactInput in;
     in.flatFaceArea = 0;
     in.dt = lastDt_;
-    contactRegion r;
+    // (the region measured in place, in the law's input)
+    contactRegion& r = in.region;
     load_ = pairLoad();
     // Hertz-Mindlin (the law on spheres) compiled into the loop, its
     // damping coefficient looked up once per pair of materials (a lookup
