@@ -174,17 +174,6 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
 }
 
 
-void demSolver::addContactLoad(const pairLoad& l)
-{
-    rigidBody& A = bodies_[l.a];
-    rigidBody& B = bodies_[l.b];
-    A.contactForce += l.forceA;
-    A.contactTorque += l.torqueA;
-    B.contactForce += l.forceB;
-    B.contactTorque += l.torqueB;
-}
-
-
 void demSolver::addPairLoad(const pairLoad& l)
 {
     addContactLoad(l);
