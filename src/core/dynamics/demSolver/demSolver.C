@@ -598,7 +598,7 @@ void demSolver::applyRegion
     (
         ia, A, ib, B, r, in, old, next,
         [&law](const contactInput& i, contactHistory& h) { return law.evaluate(i, h); },
-        !law.needsSpheres()
+        !law.needsSpheres(), false
     );
 }
 

@@ -228,6 +228,9 @@ void demSolver::sphereSweep(contactHistoryTable& next)
     // per contact was 1.3% of a pour); any other law on spheres through
     // its interface
     const bool hertz = dynamic_cast<const hertzMindlinContactLaw*>(law_.get()) != nullptr;
+    // Alone, Hertz-Mindlin's loads go straight onto the bodies (not summed
+    // per pair first: a pair has one region, so the sums are the same)
+    const bool direct = hertz && !comm_;
     const size_t nMaterials = materials_.size();
     sphereDamping_.assign(nMaterials*nMaterials, -1);
     for (const auto& p : spherePairs_)
@@ -272,10 +275,13 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         in.pairVolume = r.volume;
 
         // (the film's loads stay zero: set once above)
-        load_.forceA = load_.torqueA = load_.forceB = load_.torqueB = vec3::Zero();
-        load_.a = p.first;
-        load_.b = p.second;
-        load_.contactsFrom = contacts_.size();
+        if (!direct)
+        {
+            load_.forceA = load_.torqueA = load_.forceB = load_.torqueB = vec3::Zero();
+            load_.a = p.first;
+            load_.b = p.second;
+            load_.contactsFrom = contacts_.size();
+        }
         // (applyRegions of one region: no other region takes a history)
         const auto key = std::make_pair(p.first, p.second);
         const contactHistoryTable::range old = history_.find(key);
@@ -297,17 +303,21 @@ void demSolver::sphereSweep(contactHistoryTable& next)
                 {
                     return hertzMindlinContactLaw::force(i, h, damping);
                 },
-                false
+                false, direct
             );
         }
         else
         {
             applyRegion(p.first, A.state, p.second, B.state, r, in, oldBest, next);
         }
-        load_.contactsTo = contacts_.size();
         // Alone, the pairs' loads are added to the bodies now, in the
         // order of the pairs as computeContacts adds loads_ (the film's
         // are zero); shared, after the processes' loads are gathered
+        if (direct)
+        {
+            continue;
+        }
+        load_.contactsTo = contacts_.size();
         if (comm_)
         {
             loads_.push_back(load_);
