@@ -25,11 +25,16 @@ void rotateByWorldAngularVelocity(bodyPose& pose, const vec3& w, double dt)
     // left out is below x^8/40320 = 2.5e-21), with no root, division or
     // call
     const double x2 = 0.25*w2*dt*dt;
+    // (the series' coefficients as constants: the core is compiled with
+    // CGAL's -frounding-math, under which 1.0/24 written in the expression
+    // is divided at run time, five divisions per body and step)
+    constexpr double c2 = 1.0/2, c24 = 1.0/24, c720 = 1.0/720;
+    constexpr double s6 = 1.0/6, s120 = 1.0/120, s5040 = 1.0/5040;
     double c, k;        // cos(x), sin(x)/|w|
     if (x2 < 1e-4)
     {
-        c = 1 - x2*(1.0/2 - x2*(1.0/24 - x2*(1.0/720)));
-        k = 0.5*dt*(1 - x2*(1.0/6 - x2*(1.0/120 - x2*(1.0/5040))));
+        c = 1 - x2*(c2 - x2*(c24 - x2*c720));
+        k = 0.5*dt*(1 - x2*(s6 - x2*(s120 - x2*s5040)));
     }
     else
     {
