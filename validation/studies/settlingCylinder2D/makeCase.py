@@ -5,15 +5,19 @@ channel (issue 18: a free 2D body against a body-fitted reference).
     makeCase.py <dir> immersed   [-n 16] [options]
     makeCase.py <dir> bodyFitted -U <speed> [options]
 
-The problem (SI units): cylinder diameter D = 10 mm, density 1500 kg/m3, in
-a liquid of 1000 kg/m3 and nu (default 1e-4 m2/s) between two walls 8 D
-apart (blockage 1/8), gravity 9.81 m/s2 along the channel. Settling on the
-axis it reaches a steady terminal velocity U_t at Re = U_t D/nu of about 10.
+The problem (SI units): cylinder diameter D = 10 mm, density (-density,
+default 1500 kg/m3), in a liquid of 1000 kg/m3 and nu (default 1e-4 m2/s)
+between two walls 8 D apart (blockage 1/8), gravity 9.81 m/s2 along the
+channel. Settling on the axis it reaches a steady terminal velocity U_t at
+Re = U_t D/nu of about 10 (at the default density). A body lighter than the
+liquid rises instead; its terminal speed comes from the buoyant weight
+|rho_s - rho_f| g pi D^2/4 per depth in the same way.
 
 immersed: the lab frame. A closed channel of width 8 D and height -height D,
     uniform cells D/n, one cell (1 mm) thick with empty front and back; the
     cylinder a free body (an STL prism longer than the slab) released at rest
-    on the axis -start D below the top; stock pimpleFoam, backward, two
+    on the axis -start D below the top (or -startFromBottom D above the
+    bottom, for a rising body); stock pimpleFoam, backward, two
     outer correctors, maxCo-controlled step; the motion in
     postProcessing/bodies/0/bodies.dat.
 bodyFitted: the cylinder's frame at terminal speed, where the flow is
@@ -23,8 +27,11 @@ bodyFitted: the cylinder's frame at terminal speed, where the flow is
     study) with the channel walls as its sides; stock simpleFoam (SIMPLEC)
     to a converged steady state; the force on the cylinder from the stock
     forces function object. U_t is the U whose drag per slab depth equals the
-    buoyant weight (rho_s - rho_f) g pi D^2/4 per depth (terminal.py finds
-    it).
+    buoyant weight |rho_s - rho_f| g pi D^2/4 per depth,
+    buoyantWeightPerDepth(rho_s) (terminal.py finds it). The flow around a
+    rising body is the mirror image of that around a settling one, so the
+    case itself does not depend on the density: -density only checks it
+    (it must differ from the liquid's) and sets the weight.
 """
 import argparse, importlib.util, math, os
 
@@ -40,8 +47,11 @@ RHO_F, RHO_S, G = 1000.0, 1500.0, 9.81
 HALF_WIDTH = 4.0                  # channel half-width [D]
 
 
-def buoyantWeightPerDepth():
-    return (RHO_S - RHO_F)*G*math.pi*D*D/4
+def buoyantWeightPerDepth(rhoS=RHO_S):
+    """The body's weight less its buoyancy per slab depth [N/m], as a
+    magnitude: a light body (rhoS < RHO_F) rises at the terminal speed of
+    this drag"""
+    return abs(rhoS - RHO_F)*G*math.pi*D*D/4
 
 
 def transport(d, nu):
@@ -53,6 +63,9 @@ def transport(d, nu):
 
 def bodyFitted(a):
     d = a.dir
+    # the steady flow in the body's frame is the same (mirrored) for a
+    # settling and a rising body: only the weight its drag must balance,
+    # buoyantWeightPerDepth(a.density), depends on the density
     m = argparse.Namespace(nTheta=a.nTheta, nRadial=a.nRadial, radialGrading=a.radialGrading,
                            xUp=a.xUp, xDown=a.xDown, yHalf=HALF_WIDTH, hFar=a.hFar, slab=a.slab)
     mesh, nc = oGrid.bodyFittedMesh(m)
@@ -217,8 +230,9 @@ value           (0 %g 0);
           oGrid.fvSolution(settings).replace(
               "    nNonOrthogonalCorrectors 0;\n",
               "    nNonOrthogonalCorrectors 0;\n    pRefCell            0;\n    pRefValue           0;\n"))
-    oGrid.immersedCylinder(d, a.slab, "(0 %g %g)" % ((a.height - a.start)*D, a.slab/2),
-                           density="        density     %g;\n" % RHO_S)
+    y0 = (a.height - a.start)*D if a.startFromBottom is None else a.startFromBottom*D
+    oGrid.immersedCylinder(d, a.slab, "(0 %g %g)" % (y0, a.slab/2),
+                           density="        density     %g;\n" % a.density)
     return nx*ny
 
 
@@ -228,10 +242,14 @@ def main():
     p.add_argument("kind", choices=["bodyFitted", "immersed"])
     p.add_argument("-nu", type=float, default=1e-4, help="kinematic viscosity [m2/s]")
     p.add_argument("-slab", type=float, default=0.001)
+    p.add_argument("-density", type=float, default=RHO_S,
+                   help="cylinder density [kg/m3] (below %g: the body rises)" % RHO_F)
     # immersed
     p.add_argument("-n", type=int, default=16, help="immersed: cells per diameter")
     p.add_argument("-height", type=float, default=60, help="immersed: channel height [D]")
     p.add_argument("-start", type=float, default=6, help="immersed: start below the top [D]")
+    p.add_argument("-startFromBottom", type=float, default=None,
+                   help="immersed: start this far above the bottom [D] instead (for a rising body)")
     p.add_argument("-endTime", type=float, default=3.0)
     p.add_argument("-maxCo", type=float, default=0.5)
     # bodyFitted
@@ -244,6 +262,13 @@ def main():
     p.add_argument("-hFar", type=float, default=0.25, help="largest cell far away [D]")
     p.add_argument("-iterations", type=int, default=4000)
     a = p.parse_args()
+    if a.density <= 0 or a.density == RHO_F:
+        p.error("-density must be positive and differ from the liquid's %g kg/m3" % RHO_F)
+    if a.kind == "immersed":
+        y0 = a.height - a.start if a.startFromBottom is None else a.startFromBottom
+        if not 0.5 < y0 < a.height - 0.5:
+            p.error("the cylinder (centre %g D above the bottom) is not inside the channel"
+                    " of height %g D" % (y0, a.height))
     os.makedirs(a.dir, exist_ok=True)
     nc = bodyFitted(a) if a.kind == "bodyFitted" else immersed(a)
     print("%s: %s, %d cells" % (a.dir, a.kind, nc))

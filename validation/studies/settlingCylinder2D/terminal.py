@@ -7,7 +7,8 @@ In the cylinder's frame at terminal speed U the flow is steady: the walls and
 the inflow move past the held cylinder at U. Each run (stock simpleFoam,
 makeCase.py bodyFitted) gives the drag per slab depth F(U); a secant on
 log F against log U finds the U at which F equals the buoyant weight per
-depth, (rho_s - rho_f) g pi D^2/4, to 1e-5. Runs go to <work>/U_<speed>.
+depth, |rho_s - rho_f| g pi D^2/4, to 1e-5 (-density rho_s, default
+1500). Runs go to <work>/U_<speed>.
 Prints one line: U_t, Re and the number of cells.
 """
 import math, os, re, subprocess, sys
@@ -45,7 +46,10 @@ def main():
         sys.exit(__doc__)
     work, extra = sys.argv[1], sys.argv[2:]
     nu = float(extra[extra.index("-nu") + 1]) if "-nu" in extra else 1e-4
-    W = makeCase.buoyantWeightPerDepth()
+    rhoS = float(extra[extra.index("-density") + 1]) if "-density" in extra else makeCase.RHO_S
+    # (a light body rises: the flow is the mirror image of the settling
+    # one of the same |rho_s - rho_f|)
+    W = makeCase.buoyantWeightPerDepth(rhoS)
     U0 = 0.1
     F0, cells = drag(work, U0, extra)
     # a first guess from a drag growing like U^1.3 (Re about 10)
