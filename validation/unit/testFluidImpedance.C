@@ -85,15 +85,19 @@ TEST(fluidImpedance, sphereLimits)
     EXPECT_EQ(inviscid.damping, 0);
     EXPECT_EQ(inviscid.angularDamping, 0);
     EXPECT_NEAR(inviscid.addedMass, 0.5*rho*V, 1e-12*rho*V);
-    // A body reaching beyond its volume-equivalent ball (a cube's corners)
-    // gets the circumscribed ball's added mass and the moment between
+    // A body with more surface than its volume-equivalent ball (a cube)
+    // gets the added mass of the ball of its surface, and the moment of
+    // the fluid between that ball and the circumscribed one
     fluidImpedance::bodySize cube;
     cube.volume = 8*a*a*a;
     cube.area = 24*a*a;
     cube.circumscribedRadius = std::sqrt(3.0)*a;
     const auto c = fluidImpedance::estimate(cube, rho, nu, dtFast);
     const double R = std::sqrt(3.0)*a, aV = std::cbrt(6/pi)*a;
-    EXPECT_NEAR(c.addedMass, 0.5*rho*4.0/3*pi*R*R*R, 1e-12*c.addedMass);
+    const double aS = std::sqrt(6/pi)*a;
+    EXPECT_NEAR(c.addedMass, 0.5*rho*4.0/3*pi*aS*aS*aS, 1e-12*c.addedMass);
+    // its contacts move with its own potential-flow added mass
+    EXPECT_NEAR(c.nominalAddedMass, 0.5*rho*8*a*a*a, 1e-12*c.nominalAddedMass);
     EXPECT_NEAR(c.addedInertia, 8.0/15*pi*rho*(std::pow(R, 5) - std::pow(aV, 5)), 1e-12*c.addedInertia);
     EXPECT_GT(c.addedInertia, 0);
     // On a mesh of cells h the body the forcing makes reaches h/2 further

@@ -6,7 +6,7 @@
                [-tolerance 0.03] [-plot FILE.png]
 
 For each immersed run (makeCase.py immersed, run with pimpleFoam) the
-terminal velocity is the mean settling speed -vy over the last -window
+terminal velocity is the mean speed |vy| (settling or rising) over the last -window
 seconds of postProcessing/bodies/0/bodies.dat; the speed must have settled
 there (its change over the window below 0.5% of it) and the body must have
 stayed near the axis (|x| below 1e-2 D: the reference is the centred body;
@@ -24,7 +24,7 @@ def motion(run):
     head = lines[0][1:]
     rows = [dict(zip(head, l)) for l in lines[1:]]
     t = [float(r["time"]) for r in rows]
-    v = [-float(r["vy"]) for r in rows]
+    v = [abs(float(r["vy"])) for r in rows]
     x = [float(r["x"]) for r in rows]
     y = [float(r["y"]) for r in rows]
     return t, v, x, y

@@ -103,7 +103,8 @@ coefficients estimate
         const double aV = std::sqrt(size.volume/pi) + grow;
         const double Rc = std::max(R, a);
         const double phi = std::min(std::max(size.solidFraction, 0.0), 0.6);
-        c.addedMass = rho*pi*Rc*Rc*L*(1 + phi)/(1 - phi);
+        c.addedMass = rho*pi*a*a*L*(1 + phi)/(1 - phi);
+        c.nominalAddedMass = rho*size.volume*L;
         // Added moment: the fluid between the equivalent disc and the
         // circumscribed one, (pi/2) rho (R^4 - aV^4)
         c.addedInertia = 0.5*pi*rho*(std::pow(Rc, 4) - std::pow(aV, 4))*L;
@@ -126,7 +127,8 @@ coefficients estimate
     const double aV = std::cbrt(3*size.volume/(4*pi)) + grow;
     const double Rc = std::max(R, a);
     const double phi = std::min(std::max(size.solidFraction, 0.0), 0.6);
-    c.addedMass = 0.5*rho*(4.0/3)*pi*Rc*Rc*Rc*(1 + 2*phi)/(1 - phi);
+    c.addedMass = 0.5*rho*(4.0/3)*pi*a*a*a*(1 + 2*phi)/(1 - phi);
+    c.nominalAddedMass = 0.5*rho*size.volume;
     // (8/15) pi rho (R^5 - aV^5): the moments of the two balls
     c.addedInertia = (8.0/15)*pi*rho*(std::pow(Rc, 5) - std::pow(aV, 5));
     if (mu > 0)

@@ -1,5 +1,7 @@
 #include "fluidLoad.H"
 
+#include <algorithm>
+
 namespace immersedDEM
 {
 
@@ -19,7 +21,7 @@ fluidLoad fluidLoad::coupled
     l.force = F;
     l.torque = T;
     l.addedMass = z.addedMass;
-    l.nominalAddedMass = z.addedMass;
+    l.nominalAddedMass = std::min(z.nominalAddedMass, z.addedMass);
     l.damping = z.damping;
     l.addedInertia = z.addedInertia;
     l.angularDamping = z.angularDamping;

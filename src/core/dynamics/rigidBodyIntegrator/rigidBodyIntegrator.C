@@ -155,7 +155,10 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // The added mass, where it is inertia (fluidLoad.H); 0 without a
     // fluid or with the damper
-    const double ma = b.fluid.addedMass;
+    // (with a contact force in this sub-step, the body's own added mass:
+    // fluidLoad.H)
+    const double ma =
+        b.contactForce.isZero() ? b.fluid.addedMass : b.fluid.nominalAddedMass;
     const double c = b.fluid.damping;
     if (c > 0)
     {
