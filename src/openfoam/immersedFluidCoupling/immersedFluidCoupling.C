@@ -39,6 +39,7 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     previousVelocity0_.setSize(n, Zero);
     previousAngularVelocity0_.setSize(n, Zero);
     history_.setSize(n, 0);
+    wasInContact_.setSize(n, false);
     touched_.setSize(n, false);
     sizes_.setSize(n);
     sized_.setSize(n, false);
@@ -483,7 +484,7 @@ void Foam::immersedFluidCoupling::fluidLoads
         );
         fluidImpedance::coefficients z =
             fluidImpedance::estimate(size, rho, s.nu, deltaT);
-        if (inContact[i])
+        if (inContact[i] && wasInContact_[i])
         {
             // A body in contact moves within the step by its contacts,
             // far faster than the fluid can answer, and its velocity at
@@ -492,7 +493,10 @@ void Foam::immersedFluidCoupling::fluidLoads
             // Its added mass (and the inner fluid's moment of inertia)
             // answers a departure from the velocity the fluid saw within
             // the step instead: a damper m_a/deltaT, which lets a body at
-            // rest on a wall or in a bed stay at rest
+            // rest on a wall or in a bed stay at rest. Not in the step
+            // after a landing (free at the step before): the velocity the
+            // fluid saw is then the impact's, and the damper would drive
+            // the body on into what it landed on
             z.damping += z.addedMass/deltaT;
             z.angularDamping +=
                 (z.addedInertia + rho/b.density*b.inertia().sum()/3)/deltaT;
@@ -533,6 +537,7 @@ void Foam::immersedFluidCoupling::fluidLoads
         innerMomentum_[i] = M[i];
         innerAngularMomentum_[i] = L[i];
         ++history_[i];
+        wasInContact_[i] = inContact[i];
     }
     previousDeltaT_ = deltaT;
     seconds_ += timer.elapsedTime();
@@ -585,6 +590,7 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(previousVelocity0_, vector::zero);
     remap(previousAngularVelocity0_, vector::zero);
     remap(history_, label(0));
+    remap(wasInContact_, false);
     remap(touched_, false);
     remap(sizes_, fluidImpedance::bodySize());
     remap(sized_, false);
@@ -631,6 +637,7 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("history", history_[i]);
     os.writeEntry("previousDeltaT", previousDeltaT_);
     os.writeEntry("touched", touched_[i]);
+    os.writeEntry("inContact", wasInContact_[i]);
 }
 
 
@@ -652,4 +659,5 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
     history_[i] = d.getOrDefault<label>("history", 0);
     previousDeltaT_ = max(previousDeltaT_, d.getOrDefault<scalar>("previousDeltaT", 0));
     touched_[i] = d.getOrDefault<bool>("touched", true);
+    wasInContact_[i] = d.getOrDefault<bool>("inContact", true);
 }

@@ -155,8 +155,8 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // The added mass, where it is inertia (fluidLoad.H); 0 without a
     // fluid or with the damper
-    // (with a contact force in this sub-step, the body's own added mass:
-    // fluidLoad.H)
+    // (with a contact force in this sub-step, the body's own added mass,
+    // which follows the reference acceleration likewise: fluidLoad.H)
     const double ma =
         b.contactForce.isZero() ? b.fluid.addedMass : b.fluid.nominalAddedMass;
     const double c = b.fluid.damping;
@@ -165,13 +165,13 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
         // The fluid's damper, implicit (any c/m is stable): the force is
         // taken at the velocity after the kick, F - c (v_new - v)
         b.velocity +=
-            (b.totalForce() + b.fluid.inertialForce())
+            (b.totalForce() + ma*b.fluid.referenceAcceleration)
            *(halfDt/(b.mass() + ma + halfDt*c));
     }
     else
     {
         b.velocity +=
-            (b.totalForce() + b.fluid.inertialForce())*(halfDt/(b.mass() + ma));
+            (b.totalForce() + ma*b.fluid.referenceAcceleration)*(halfDt/(b.mass() + ma));
     }
     for (int k = 0; k < 3; ++k)
     {
