@@ -40,7 +40,6 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     previousAngularVelocity0_.setSize(n, Zero);
     history_.setSize(n, 0);
     wasInContact_.setSize(n, false);
-    touched_.setSize(n, false);
     sizes_.setSize(n);
     sized_.setSize(n, false);
     for (label i = 0; i < n; ++i)
@@ -544,17 +543,6 @@ void Foam::immersedFluidCoupling::fluidLoads
 }
 
 
-void Foam::immersedFluidCoupling::noteContacts(demSolver& dem)
-{
-    const std::vector<char>& touched = dem.touched();
-    forAll(touched_, i)
-    {
-        touched_[i] = size_t(i) < touched.size() && touched[i];
-    }
-    dem.clearTouched();
-}
-
-
 Foam::scalar Foam::immersedFluidCoupling::takeSeconds()
 {
     const scalar s = seconds_;
@@ -591,7 +579,6 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(previousAngularVelocity0_, vector::zero);
     remap(history_, label(0));
     remap(wasInContact_, false);
-    remap(touched_, false);
     remap(sizes_, fluidImpedance::bodySize());
     remap(sized_, false);
     for (label i = firstNew; i < n; ++i)
@@ -636,7 +623,6 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("innerAngularMomentum0", innerAngularMomentum0_[i]);
     os.writeEntry("history", history_[i]);
     os.writeEntry("previousDeltaT", previousDeltaT_);
-    os.writeEntry("touched", touched_[i]);
     os.writeEntry("inContact", wasInContact_[i]);
 }
 
@@ -658,6 +644,5 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
         d.getOrDefault<vector>("innerAngularMomentum0", innerAngularMomentum_[i]);
     history_[i] = d.getOrDefault<label>("history", 0);
     previousDeltaT_ = max(previousDeltaT_, d.getOrDefault<scalar>("previousDeltaT", 0));
-    touched_[i] = d.getOrDefault<bool>("touched", true);
     wasInContact_[i] = d.getOrDefault<bool>("inContact", true);
 }

@@ -153,26 +153,16 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // Translation
 
-    // The added mass, where it is inertia (fluidLoad.H); 0 without a
-    // fluid or with the damper
-    // (with a contact force in this sub-step, the body's own added mass,
-    // which follows the reference acceleration likewise: fluidLoad.H)
+    // The fluid's added mass m_a and damper c (fluidLoad.H; both 0
+    // without a fluid), the damper implicit: the force is taken at the
+    // velocity after the kick, F - c (v_new - v), stable for any c/m.
+    // With a contact force in this sub-step the body moves with its own
+    // added mass, which follows the reference acceleration likewise
     const double ma =
         b.contactForce.isZero() ? b.fluid.addedMass : b.fluid.nominalAddedMass;
-    const double c = b.fluid.damping;
-    if (c > 0)
-    {
-        // The fluid's damper, implicit (any c/m is stable): the force is
-        // taken at the velocity after the kick, F - c (v_new - v)
-        b.velocity +=
-            (b.totalForce() + ma*b.fluid.referenceAcceleration)
-           *(halfDt/(b.mass() + ma + halfDt*c));
-    }
-    else
-    {
-        b.velocity +=
-            (b.totalForce() + ma*b.fluid.referenceAcceleration)*(halfDt/(b.mass() + ma));
-    }
+    b.velocity +=
+        (b.totalForce() + ma*b.fluid.referenceAcceleration)
+       *(halfDt/(b.mass() + ma + halfDt*b.fluid.damping));
     for (int k = 0; k < 3; ++k)
     {
         if (b.lockTranslation[k])

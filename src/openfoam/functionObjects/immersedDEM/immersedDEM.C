@@ -342,9 +342,6 @@ bool Foam::functionObjects::immersedDEM::execute()
             << ": " << err.what() << exit(FatalError);
     }
     const scalar demSeconds = demTimer.elapsedTime();
-    // Which bodies had a contact in this step (before bodies leave or
-    // enter: the DEM's marks are by index)
-    state_.coupling().noteContacts(state_.dem());
 
     // Bodies leaving (removal) and entering (insertion over time) at the
     // end of the step: projected, in the rows of this time
@@ -373,17 +370,17 @@ bool Foam::functionObjects::immersedDEM::execute()
         state_.project();
     }
     checkBodies(deltaT);
+    const scalar fourierDeltaT = reportedFourier_ ? GREAT : fourierStep();
     if
     (
-        !reportedFourier_
+        fourierDeltaT < deltaT
      && !time_.controlDict().getOrDefault<bool>("adjustTimeStep", false)
-     && fourierStep() < deltaT
     )
     {
         WarningInFunction
             << "Function object " << name() << ", time " << time_.timeName()
             << ": the CFD step " << deltaT << " s is above the step "
-            << fourierStep() << " s at which the bodies' viscous Fourier"
+            << fourierDeltaT << " s at which the bodies' viscous Fourier"
             << " number nu deltaT/h^2 is maxFourier " << maxFourier_
             << ": the solver's correctors may not converge the fluid's"
             << " answer to the bodies, and a free body can be thrown off."
