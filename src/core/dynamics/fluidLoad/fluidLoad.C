@@ -1,35 +1,42 @@
 #include "fluidLoad.H"
 
-#include <algorithm>
-
 namespace immersedDEM
 {
 
-fluidLoad fluidLoad::coupled
+fluidLoad fluidLoad::stabilised
 (
     const vec3& F,
     const vec3& T,
-    const fluidImpedance::coefficients& z,
+    const double addedMass,
+    const double nominalAddedMass,
+    const bool inertia,
+    const double addedInertia,
+    const double deltaT,
     const double t,
     const vec3& v,
-    const vec3& a,
+    const vec3& vPrevious,
     const vec3& w,
-    const vec3& alpha
+    const vec3& wPrevious
 )
 {
     fluidLoad l;
     l.force = F;
-    l.torque = T;
-    l.addedMass = z.addedMass;
-    l.nominalAddedMass = std::min(z.nominalAddedMass, z.addedMass);
-    l.damping = z.damping;
-    l.addedInertia = z.addedInertia;
-    l.angularDamping = z.angularDamping;
+    if (inertia)
+    {
+        l.addedMass = addedMass;
+        l.nominalAddedMass = nominalAddedMass;
+    }
+    else
+    {
+        l.damping = addedMass/deltaT;
+    }
     l.referenceVelocity = v;
-    l.referenceAcceleration = a;
+    l.referenceAcceleration = (v - vPrevious)/deltaT;
     l.referenceTime = t;
+    l.torque = T;
+    l.angularDamping = addedInertia/deltaT;
     l.referenceAngularVelocity = w;
-    l.referenceAngularAcceleration = alpha;
+    l.referenceAngularAcceleration = (w - wPrevious)/deltaT;
     return l;
 }
 

@@ -146,6 +146,7 @@ Foam::functionObjects::immersedDEM::immersedDEM
     fvMeshFunctionObject(name, runTime, dict),
     state_(immersedDEMState::New(mesh_)),
     rhoInf_(0),
+    Ca_(1),
     UName_("U")
 {
     summary_.reset(new ::immersedDEM::runSummary());
@@ -191,62 +192,23 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "nu", "maxFourier", "maxSubSteps", "writeContacts",
-            // (the former stabilisation's: an error below that says so)
-            "addedMassCoefficient", "measureAddedMass", "impactInertia"
+            "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "impactInertia", "maxSubSteps",
+            "writeContacts"
         }
     );
-    for (const word old : {"addedMassCoefficient", "measureAddedMass", "impactInertia"})
-    {
-        if (dict.found(old))
-        {
-            FatalIOErrorInFunction(dict)
-                << "Keyword '" << old << "' in " << dict.name()
-                << " belonged to the explicit coupling's stabilisation, which"
-                << " is gone: the coupling now takes the fluid's answer to a"
-                << " body's change of motion implicitly and needs no setting"
-                << " (src/core/coupling/fluidImpedance). Remove the keyword"
-                << nl << exit(FatalIOError);
-        }
-    }
     contactsEverySubStep_ =
         immersedDEMChecks::oneOfOrDefault(dict, "writeContacts", {"step", "subStep"}, "step") == "subStep";
     maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
-    maxFourier_ = immersedDEMChecks::inRangeOrDefault(dict, "maxFourier", 0, 1e6, 4);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
+    Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
+    measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
+    impactInertia_ = immersedDEMChecks::oneOfOrDefault
+    (
+        dict, "impactInertia", {"isolated", "yes", "no"}, "isolated"
+    );
     UName_ = dict.getOrDefault<word>("U", "U");
-    readViscosity(dict);
     setViscosity();
     return true;
-}
-
-
-void Foam::functionObjects::immersedDEM::readViscosity(const dictionary& dict)
-{
-    // The fluid's kinematic viscosity: the keyword, or the solver's
-    // laminar nu (singlePhaseTransportModel)
-    if (dict.found("nu"))
-    {
-        nu_ = immersedDEMChecks::positive(dict, "nu");
-        return;
-    }
-    const word transport("transportProperties");
-    const IOdictionary* t = mesh_.findObject<IOdictionary>(transport);
-    if (!t || !t->found("nu"))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Function object " << name() << ": the coupling needs the"
-            << " fluid's kinematic viscosity, and this solver has no 'nu' in"
-            << " constant/" << transport << ". Give it as 'nu' in "
-            << dict.name() << nl << exit(FatalIOError);
-    }
-    nu_ = dimensionedScalar("nu", dimViscosity, *t).value();
-    if (!(nu_ > 0))
-    {
-        FatalIOErrorInFunction(*t)
-            << "Keyword 'nu' in " << t->objectPath() << " is " << nu_
-            << ": it must be > 0" << nl << exit(FatalIOError);
-    }
 }
 
 
@@ -259,7 +221,25 @@ void Foam::functionObjects::immersedDEM::setViscosity()
         state_.dem().setFluidViscosity(0);
         return;
     }
-    state_.dem().setFluidViscosity(rhoInf_*nu_);
+    const word transport("transportProperties");
+    const IOdictionary* t = mesh_.findObject<IOdictionary>(transport);
+    if (!t || !t->found("nu"))
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << ": the lubrication of "
+            << state_.properties().objectPath() << " needs the fluid's"
+            << " kinematic viscosity 'nu' in constant/" << transport
+            << " (not loaded by this solver, or no 'nu' there); switch it"
+            << " off with lubrication { active no; } there" << exit(FatalError);
+    }
+    const scalar nu = dimensionedScalar("nu", dimViscosity, *t).value();
+    if (!(nu > 0))
+    {
+        FatalIOErrorInFunction(*t)
+            << "Keyword 'nu' in " << t->objectPath() << " is " << nu
+            << ": it must be > 0" << nl << exit(FatalIOError);
+    }
+    state_.dem().setFluidViscosity(rhoInf_*nu);
 }
 
 
@@ -277,11 +257,16 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
-        // The velocity's time scheme (backward: second order)
-        const bool backward =
-            word(mesh_.ddtScheme("ddt(" + UName_ + ')')[0].wordToken())
-         == "backward";
-        state_.fluidLoads(*U, deltaT, {rhoInf_, nu_, backward});
+        using impact = immersedFluidCoupling::settings::impact;
+        state_.fluidLoads
+        (
+            *U, deltaT,
+            {
+                rhoInf_, Ca_, measureAddedMass_,
+                impactInertia_ == "yes" ? impact::yes
+              : impactInertia_ == "no" ? impact::no : impact::isolated
+            }
+        );
     }
     else if (!warnedNoForcing_)
     {
@@ -342,6 +327,9 @@ bool Foam::functionObjects::immersedDEM::execute()
             << ": " << err.what() << exit(FatalError);
     }
     const scalar demSeconds = demTimer.elapsedTime();
+    // Which bodies had a contact in this step (before bodies leave or
+    // enter: the DEM's marks are by index)
+    state_.coupling().noteContacts(state_.dem());
 
     // Bodies leaving (removal) and entering (insertion over time) at the
     // end of the step: projected, in the rows of this time
@@ -370,23 +358,6 @@ bool Foam::functionObjects::immersedDEM::execute()
         state_.project();
     }
     checkBodies(deltaT);
-    const scalar fourierDeltaT = reportedFourier_ ? GREAT : fourierStep();
-    if
-    (
-        fourierDeltaT < deltaT
-     && !time_.controlDict().getOrDefault<bool>("adjustTimeStep", false)
-    )
-    {
-        WarningInFunction
-            << "Function object " << name() << ", time " << time_.timeName()
-            << ": the CFD step " << deltaT << " s is above the step "
-            << fourierDeltaT << " s at which the bodies' viscous Fourier"
-            << " number nu deltaT/h^2 is maxFourier " << maxFourier_
-            << ": the solver's correctors may not converge the fluid's"
-            << " answer to the bodies, and a free body can be thrown off."
-            << " Reduce deltaT (or use adjustTimeStep, which caps it)" << endl;
-        reportedFourier_ = true;
-    }
 
     scalar largest = 0;
     for (const auto& c : state_.dem().contacts())
@@ -420,63 +391,6 @@ bool Foam::functionObjects::immersedDEM::execute()
             output_->writeContacts(time_.value(), state_.dem());
         }
         outputSeconds_ += outputTimer.elapsedTime();
-    }
-    return true;
-}
-
-
-Foam::scalar Foam::functionObjects::immersedDEM::fourierStep() const
-{
-    // The largest CFD step at maxFourier over the free bodies in the
-    // mesh (their smallest covered cell, checkBodies)
-    scalar cap = GREAT;
-    if (!(maxFourier_ > 0) || !(nu_ > 0) || !state_.projection().forcingRegistered())
-    {
-        return cap;
-    }
-    // (the cells' size in the plane of a 2D mesh: cube roots of the
-    // volumes are cells of the slab's depth)
-    scalar depth = 0;
-    if (mesh_.nSolutionD() == 2)
-    {
-        const Vector<label>& d = mesh_.solutionD();
-        for (direction k = 0; k < 3; ++k)
-        {
-            if (d[k] < 0) depth = mesh_.bounds().span()[k];
-        }
-    }
-    const auto& bodies = state_.dem().bodies();
-    forAll(bodies, i)
-    {
-        scalar h = bodies[i].fluidCellSize;
-        if (depth > 0)
-        {
-            h = sqrt(h*h*h/depth);
-        }
-        if (bodies[i].dynamic() && h > 0 && !(i < outside_.size() && outside_[i]))
-        {
-            cap = min(cap, maxFourier_*h*h/nu_);
-        }
-    }
-    return cap;
-}
-
-
-bool Foam::functionObjects::immersedDEM::adjustTimeStep()
-{
-    const scalar cap = fourierStep();
-    if (cap < time_.deltaTValue())
-    {
-        const_cast<Time&>(time_).setDeltaT(cap, false);
-        if (!reportedFourier_)
-        {
-            Info<< type() << ' ' << name() << ": the CFD step is capped at "
-                << cap << " s, where the bodies' viscous Fourier number"
-                << " nu deltaT/h^2 is maxFourier " << maxFourier_
-                << " (the solver's correctors converge the fluid's answer to"
-                << " a body's motion below it)" << endl;
-            reportedFourier_ = true;
-        }
     }
     return true;
 }
