@@ -40,7 +40,11 @@ std::vector<contactMaterial> readMaterials(const dictionary& all)
         );
         contactMaterial m;
         m.name = e.keyword();
-        m.youngsModulus = immersedDEMChecks::positive(d, "youngsModulus");
+        // From soft gels (1e3 Pa) to above diamond (1.2e12 Pa): outside,
+        // a contact cannot hold a body up against its weight at any
+        // usable step (below), or the step becomes vanishingly small
+        // (above)
+        m.youngsModulus = immersedDEMChecks::inRange(d, "youngsModulus", 1e3, 1e13);
         m.poissonsRatio = immersedDEMChecks::inRange(d, "poissonsRatio", 0, 0.5);
         m.restitution = immersedDEMChecks::inRangeOrDefault(d, "restitution", 1e-6, 1, 1);
         m.friction = immersedDEMChecks::inRangeOrDefault(d, "friction", 0, 100, 0);
@@ -775,7 +779,18 @@ void Foam::immersedDEMReader::initialOverlaps
 )
 {
     namespace io = immersedDEM::initialOverlaps;
-    const std::vector<immersedDEM::initialOverlap> found = io::find(dem);
+    std::vector<immersedDEM::initialOverlap> found;
+    try
+    {
+        found = io::find(dem);
+    }
+    catch (const coreError& err)
+    {
+        FatalErrorInFunction
+            << "Checking the bodies of " << dictName << " for overlaps at the"
+            << " start: " << err.what() << " (sub-dictionary contact)"
+            << exit(FatalError);
+    }
     if (found.empty())
     {
         Info<< "    No overlaps at the start" << endl;
@@ -793,7 +808,18 @@ void Foam::immersedDEMReader::initialOverlaps
     }
     Info<< "    " << found.size() << " pairs overlap at the start:" << nl
         << io::text(dem, found).c_str();
-    const immersedDEM::overlapSeparation s = io::separate(dem);
+    immersedDEM::overlapSeparation s;
+    try
+    {
+        s = io::separate(dem);
+    }
+    catch (const coreError& err)
+    {
+        FatalErrorInFunction
+            << "Separating the bodies of " << dictName << " that overlap at"
+            << " the start: " << err.what() << " (sub-dictionary contact)"
+            << exit(FatalError);
+    }
     Info<< "    initialOverlaps separate: " << s.bodiesMoved << " bodies moved apart"
         << " in " << s.iterations << " iterations, the farthest by "
         << s.largestMove << " m" << endl;

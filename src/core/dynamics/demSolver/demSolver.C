@@ -1703,9 +1703,41 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
         // a restarted run continues the written one exactly
         if (i == 0 || i == n - 1) fullNext_ = true;
         step(dt);
+        checkDepths();
         if (afterStep) afterStep();
     }
     return n;
+}
+
+
+void demSolver::checkDepths() const
+{
+    for (const contactRecord& c : contacts_)
+    {
+        const rigidBody& A = bodies_[c.a];
+        const rigidBody& B = bodies_[c.b];
+        const double V = isWall_[c.a]
+            ? B.geometry->volume()
+            : isWall_[c.b]
+            ? A.geometry->volume()
+            : std::min(A.geometry->volume(), B.geometry->volume());
+        if (!(c.region.volume <= maxOverlapFraction*V))
+        {
+            std::ostringstream msg;
+            msg.precision(3);
+            msg << "At t = " << time_ << " s bodies '" << A.name << "' and '"
+                << B.name << "' overlap by " << c.region.volume << " m3, "
+                << 100*c.region.volume/V << "% of the smaller one (more than "
+                << 100*maxOverlapFraction << "%): one has gone into the other"
+                << " beyond what a contact law can push apart (the direction"
+                << " and depth of the overlap no longer say how), at speeds "
+                << A.velocity.norm() << " and " << B.velocity.norm() << " m/s."
+                << " The contact is too soft for the impact: raise"
+                << " youngsModulus of their materials, lower the speeds, or"
+                << " shorten the DEM step (time { stepsPerContact; referenceSpeed; })";
+            throw coreError(msg.str());
+        }
+    }
 }
 
 

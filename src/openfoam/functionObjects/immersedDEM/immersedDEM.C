@@ -57,11 +57,6 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
 {
     const auto& bodies = state_.dem().bodies();
     const label n = bodies.size();
-    if (outside_.size() != n)
-    {
-        outside_.setSize(n, false);
-        reportedCourant_.setSize(n, 1);
-    }
 
     // The size of the smallest cell each body covers (the cells its
     // projection set: the cost follows the bodies); GREAT where none
@@ -97,21 +92,28 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
         const ::immersedDEM::vec3& p = b.pose.position();
         const vector x(p.x(), p.y(), p.z());
 
-        // Outside: (next to) nothing of it projected on the mesh
-        const bool out =
+        // Outside: (next to) nothing of it projected on the mesh. The
+        // fluid no longer sees it, and the DEM alone would carry it on
+        // through nothing: an error, unless removal takes such bodies out
+        // (then it is gone before this check)
+        if
+        (
             i < projectedVolume.size()
-         && projectedVolume[i] < 1e-6*b.geometry->volume();
-        if (out && !outside_[i])
+         && projectedVolume[i] < 1e-6*b.geometry->volume()
+        )
         {
-            WarningInFunction
-                << "Function object " << name() << ": body '" << b.name.c_str()
-                << "' left the mesh at time " << time_.timeName()
-                << " (centre " << x << ", mesh bounds " << mesh_.bounds()
-                << "): the fluid no longer sees it; it continues in the DEM"
-                << endl;
+            FatalErrorInFunction
+                << "Function object " << name() << ", time " << time_.timeName()
+                << ": body '" << b.name.c_str() << "' left the mesh (centre "
+                << x << ", velocity " << coreConversion::toFoam(b.velocity)
+                << " m/s, mesh bounds " << mesh_.bounds() << "): the fluid no"
+                << " longer sees it. If bodies may leave, add"
+                << " removal { leavingMesh yes; } to "
+                << state_.properties().objectPath() << "; if this one should"
+                << " not have, see the log above for what drove it out"
+                << exit(FatalError);
         }
-        outside_[i] = out;
-        if (out || h[i] >= GREAT || !(deltaT > 0))
+        if (h[i] >= GREAT || !(deltaT > 0))
         {
             continue;
         }
@@ -120,17 +122,68 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
         const scalar r = b.geometry->boundingRadius();
         const scalar speed = b.velocity.norm() + b.angularVelocity.norm()*r;
         const scalar Co = speed*deltaT/h[i];
-        if (Co > reportedCourant_[i])
+        if (!(Co <= maxBodyCourant_))
         {
-            WarningInFunction
+            FatalErrorInFunction
                 << "Function object " << name() << ", time " << time_.timeName()
-                << ": body '" << b.name.c_str() << "' moves more than a cell per"
-                << " CFD step: speed " << speed << " m/s (|v| + |omega| r),"
-                << " cell size " << h[i] << " m (the smallest it covers), CFD step "
-                << deltaT << " s: body Courant number " << Co
-                << ". The fluid cannot follow; reduce deltaT (or use"
-                << " adjustTimeStep with a smaller maxCo)" << endl;
-            reportedCourant_[i] = 2*Co;
+                << ": body '" << b.name.c_str() << "' moves more than "
+                << maxBodyCourant_ << " cell per CFD step: speed " << speed
+                << " m/s (|v| + |omega| r), cell size " << h[i]
+                << " m (the smallest it covers), CFD step " << deltaT
+                << " s: body Courant number " << Co << ". The fluid cannot"
+                << " follow it. Reduce deltaT (or maxCo with adjustTimeStep"
+                << " yes), or, if the speed is wrong, see the log above for"
+                << " what drove it; maxBodyCourant (system/controlDict, this"
+                << " function object) allows more" << exit(FatalError);
+        }
+    }
+}
+
+
+void Foam::functionObjects::immersedDEM::checkRun(const scalar deltaT)
+{
+    // The scales of the start: the first step, and the largest of the
+    // fluid's speed, the bodies' speeds and the speed of a free fall over
+    // the mesh's size
+    const auto& bodies = state_.dem().bodies();
+    const volVectorField* U = mesh_.findObject<volVectorField>(UName_);
+    if (!(referenceDeltaT_ > 0))
+    {
+        referenceDeltaT_ = deltaT;
+        scalar s = U ? gMax(mag(U->primitiveField())) : 0;
+        forAll(bodies, i)
+        {
+            s = max(s, scalar(bodies[i].velocity.norm()));
+        }
+        const scalar g = state_.dem().settings().gravity.norm();
+        s = max(s, sqrt(2*g*mag(mesh_.bounds().span())));
+        referenceSpeed_ = s;
+    }
+    if (deltaT < 1e-6*referenceDeltaT_)
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << ", time " << time_.timeName()
+            << ": the CFD step has collapsed to " << deltaT << " s, below"
+            << " 1e-6 of the first step " << referenceDeltaT_ << " s: the run"
+            << " has gone bad (velocities of the fluid or the bodies far"
+            << " beyond the case's scales). See the log above for the first"
+            << " body or field that grew" << exit(FatalError);
+    }
+    const scalar bound = 100*max(referenceSpeed_, SMALL);
+    forAll(bodies, i)
+    {
+        if (state_.dem().isWall(i)) continue;
+        const scalar v = bodies[i].velocity.norm();
+        if (!(v <= bound))
+        {
+            FatalErrorInFunction
+                << "Function object " << name() << ", time " << time_.timeName()
+                << ": body '" << bodies[i].name.c_str() << "' moves at " << v
+                << " m/s, more than 100 times the case's speed scale "
+                << referenceSpeed_ << " m/s (the largest of the fluid's and"
+                << " the bodies' speeds at the start and of a free fall over"
+                << " the mesh): the run has gone bad. See the log above for"
+                << " where its speed grew" << exit(FatalError);
         }
     }
 }
@@ -174,7 +227,14 @@ Foam::functionObjects::immersedDEM::immersedDEM
                 << exit(FatalError);
         }
     }
-    checkBodies(time_.deltaTValue());
+    {
+        // OpenFOAM turns an error while a function object is constructed
+        // into a warning and runs on without it; a body the fluid cannot
+        // follow from the start must stop the run
+        const bool throwing = FatalError.dontThrowExceptions();
+        checkBodies(time_.deltaTValue());
+        FatalError.throwExceptions(throwing);
+    }
     summary_->track(state_.dem());
     setupSeconds_ = runClock_.elapsedTime();
 }
@@ -193,12 +253,13 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
             "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "impactInertia", "maxSubSteps",
-            "writeContacts"
+            "writeContacts", "maxBodyCourant"
         }
     );
     contactsEverySubStep_ =
         immersedDEMChecks::oneOfOrDefault(dict, "writeContacts", {"step", "subStep"}, "step") == "subStep";
     maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
+    maxBodyCourant_ = immersedDEMChecks::positiveOrDefault(dict, "maxBodyCourant", 1);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
     Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
     measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
@@ -246,6 +307,9 @@ void Foam::functionObjects::immersedDEM::setViscosity()
 bool Foam::functionObjects::immersedDEM::execute()
 {
     const scalar deltaT = time_.deltaTValue();
+    // (before the step's DEM: its sub-step count would fail first, with a
+    // less telling message)
+    checkRun(deltaT);
 
     if (state_.projection().forcingRegistered())
     {
@@ -335,29 +399,13 @@ bool Foam::functionObjects::immersedDEM::execute()
     // end of the step: projected, in the rows of this time
     const immersedDEMStreams::change change =
         state_.updateBodies(time_.value(), mesh_.findObject<volVectorField>(UName_));
-    if (change.any())
-    {
-        // The per-body warnings follow their bodies
-        const label n = state_.dem().bodies().size();
-        List<bool> outside(n, false);
-        List<scalar> courant(n, scalar(1));
-        for (label i = 0; i < change.firstNew; ++i)
-        {
-            const label j = change.kept.empty() ? i : change.kept[i];
-            if (j < outside_.size())
-            {
-                outside[i] = outside_[j];
-                courant[i] = reportedCourant_[j];
-            }
-        }
-        outside_.transfer(outside);
-        reportedCourant_.transfer(courant);
-    }
-    else
+    if (!change.any())
     {
         state_.project();
     }
     checkBodies(deltaT);
+    // (again after the DEM: before the fluid's next step sees the bodies)
+    checkRun(deltaT);
 
     scalar largest = 0;
     for (const auto& c : state_.dem().contacts())
