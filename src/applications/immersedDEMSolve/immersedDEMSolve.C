@@ -325,6 +325,26 @@ int main(int argc, char *argv[])
         {
             streams.update(*dem, runTime.value());
         }
+        if (mesh)
+        {
+            // A body that left the mesh (and removal did not take out)
+            const labelList in = immersedDEMStreams::inMesh(*mesh, *dem);
+            forAll(in, i)
+            {
+                if (in[i]) continue;
+                const auto& bi = dem->bodies()[i];
+                FatalErrorInFunction
+                    << "Time " << runTime.timeName() << ": body '"
+                    << bi.name.c_str() << "' left the mesh (centre "
+                    << immersedDEMReader::toFoam(bi.pose.position())
+                    << ", velocity " << immersedDEMReader::toFoam(bi.velocity)
+                    << " m/s, mesh bounds " << mesh->bounds() << "). If bodies"
+                    << " may leave, add removal { leavingMesh yes; } to "
+                    << properties.objectPath() << "; if this one should not"
+                    << " have, see the log above for what drove it out"
+                    << exit(FatalError);
+            }
+        }
         auto b = wallClock::now();
         demSeconds += seconds(a, b);
         scalar largest = 0;

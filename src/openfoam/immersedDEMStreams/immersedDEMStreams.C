@@ -89,6 +89,33 @@ Foam::immersedDEMStreams::immersedDEMStreams
 }
 
 
+Foam::labelList Foam::immersedDEMStreams::inMesh
+(
+    const polyMesh& mesh,
+    const demSolver& dem,
+    const std::vector<char>& skip
+)
+{
+    const auto& bodies = dem.bodies();
+    labelList in(bodies.size(), 0);
+    forAll(in, i)
+    {
+        if
+        (
+            dem.isWall(i)
+         || (size_t(i) < skip.size() && skip[i])
+         || mesh.findCell(coreConversion::toFoam(bodies[i].pose.position())) >= 0
+        )
+        {
+            in[i] = 1;
+        }
+    }
+    Pstream::listCombineGather(in, maxEqOp<label>());
+    Pstream::listCombineScatter(in);
+    return in;
+}
+
+
 Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
 (
     demSolver& dem,
@@ -104,20 +131,10 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
     for (const int i : gone) why[i] = 1;
     if (leavingMesh_)
     {
-        labelList inMesh(bodies.size(), 0);
-        forAll(inMesh, i)
+        const labelList in = inMesh(*mesh_, dem, why);
+        forAll(in, i)
         {
-            if (dem.isWall(i) || why[i]) continue;
-            if (mesh_->findCell(coreConversion::toFoam(bodies[i].pose.position())) >= 0)
-            {
-                inMesh[i] = 1;
-            }
-        }
-        Pstream::listCombineGather(inMesh, maxEqOp<label>());
-        Pstream::listCombineScatter(inMesh);
-        forAll(inMesh, i)
-        {
-            if (!dem.isWall(i) && !why[i] && !inMesh[i])
+            if (!in[i])
             {
                 why[i] = 2;
                 gone.push_back(i);
