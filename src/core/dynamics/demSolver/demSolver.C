@@ -1583,16 +1583,26 @@ demSolver::stepChoice demSolver::stepFor(double T) const
         for (const rigidBody& b : bodies_)
         {
             if (!b.dynamic()) continue;
-            if (b.fluid.damping > 0)
+            const double relax = std::min
+            (
+                b.fluid.damping > 0
+              ? b.mass()/b.fluid.damping : std::numeric_limits<double>::max(),
+                b.fluid.angularDamping > 0
+              ? b.inertia().minCoeff()/b.fluid.angularDamping
+              : std::numeric_limits<double>::max()
+            );
+            if (0.002*relax < dt)
             {
-                dt = std::min(dt, 0.002*b.mass()/b.fluid.damping);
-            }
-            if (b.fluid.angularDamping > 0)
-            {
-                dt = std::min(dt, 0.002*b.inertia().minCoeff()/b.fluid.angularDamping);
+                dt = 0.002*relax;
+                c.nameA = b.name;
             }
         }
-        dt = std::max(dt, timeStep());
+        if (dt < timeStep())
+        {
+            dt = timeStep();
+            c.nameA.clear();
+            c.floor = true;
+        }
     }
     if (c.a >= 0)
     {

@@ -106,7 +106,11 @@ std::string timeStepExplanation::text(const demSolver& dem) const
 
 std::string timeStepExplanation::lastStep(const demSolver& dem)
 {
-    const demSolver::stepChoice& c = dem.lastStep();
+    return choice(dem.lastStep());
+}
+
+std::string timeStepExplanation::choice(const demSolver::stepChoice& c)
+{
     std::ostringstream os;
     os.precision(4);
     os  << c.deltaT << " s (";
@@ -116,7 +120,17 @@ std::string timeStepExplanation::lastStep(const demSolver& dem)
     }
     else if (c.a < 0)
     {
-        os  << "free flight: no pair can meet)";
+        os  << "free flight: no pair can meet";
+        if (c.floor)
+        {
+            os  << "; the DEM's own step, its floor";
+        }
+        else if (!c.nameA.empty())
+        {
+            os  << "; 1/500 of the relaxation time of body " << c.nameA
+                << " under the fluid's damping";
+        }
+        os  << ")";
     }
     else
     {

@@ -348,18 +348,39 @@ bool Foam::functionObjects::immersedDEM::execute()
     // A DEM step far below the CFD step is a stiff material or a tiny
     // body; past this many sub-steps per CFD step the run would only look
     // hung
-    const scalar demDeltaT = state_.dem().stepFor(deltaT).deltaT;
+    const ::immersedDEM::demSolver::stepChoice choice =
+        state_.dem().stepFor(deltaT);
+    const scalar demDeltaT = choice.deltaT;
     if (deltaT/demDeltaT > maxSubSteps_)
     {
+        // Set by a body's relaxation under the fluid's damping, or by the
+        // contacts and materials
+        const bool damped =
+            choice.a < 0 && !choice.floor && !choice.nameA.empty();
+        OStringStream remedy;
+        if (damped)
+        {
+            remedy
+                << "The fluid's damping of that body is far above its"
+                << " inertia: a body far lighter than the fluid it moves, or"
+                << " a coupling gone bad (see the log above for its speed"
+                << " and force). Reduce the CFD step or raise maxSubSteps";
+        }
+        else
+        {
+            remedy
+                << "Reduce the CFD step, soften the materials, set"
+                << " time { deltaT ...; } in "
+                << state_.properties().objectPath() << " or raise maxSubSteps";
+        }
         FatalErrorInFunction
             << "Function object " << name() << ", time " << time_.timeName()
             << ": the DEM step " << demDeltaT << " s would take "
             << ceil(deltaT/demDeltaT) << " sub-steps for the CFD step "
             << deltaT << " s, more than maxSubSteps " << maxSubSteps_
-            << " (system/controlDict). Reduce the CFD step, soften the"
-            << " materials, set time { deltaT ...; } in "
-            << state_.properties().objectPath() << " or raise maxSubSteps"
-            << exit(FatalError);
+            << " (system/controlDict). The step is "
+            << ::immersedDEM::timeStepExplanation::choice(choice).c_str()
+            << ". " << remedy.str().c_str() << exit(FatalError);
     }
 
     label nSteps = 0;
