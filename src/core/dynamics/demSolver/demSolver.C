@@ -1595,6 +1595,7 @@ demSolver::stepChoice demSolver::stepFor(double T) const
             {
                 dt = 0.002*relax;
                 c.nameA = b.name;
+                c.relaxation = relax;
             }
         }
         if (dt < timeStep())

@@ -361,10 +361,10 @@ bool Foam::functionObjects::immersedDEM::execute()
         if (damped)
         {
             remedy
-                << "The fluid's damping of that body is far above its"
-                << " inertia: a body far lighter than the fluid it moves, or"
-                << " a coupling gone bad (see the log above for its speed"
-                << " and force). Reduce the CFD step or raise maxSubSteps";
+                << "Raise maxSubSteps or reduce the CFD step; if m/c is far"
+                << " below the CFD step, the body is far lighter than the"
+                << " fluid it moves or the coupling has gone bad (see the log"
+                << " above for its speed and force)";
         }
         else
         {
