@@ -70,8 +70,8 @@ double restitutionCalibration::damping(double e, double q)
     }
 
     // The last (e, q) asked on this thread and its answer: a law asks the
-    // same for every contact of a material pair (a lock and a map search
-    // were 2.5% of a sphere pour)
+    // same for every contact of a material pair (no lock and no map
+    // search per contact)
     thread_local double lastE = -1, lastQ = 0, lastC = 0;
     if (e == lastE && q == lastQ)
     {

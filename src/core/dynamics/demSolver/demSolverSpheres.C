@@ -5,8 +5,8 @@ Description
     lubrication film. The general loop (computeContacts) asks the pair
     filter, calls the overlap engine through its interface (a vector of
     regions per pair), and reads each body's mass, radius and state through
-    the shape's virtual functions and the whole 640-byte body; for a pour of
-    1,000 spheres that was about 80% of the run. Here every body's position,
+    the shape's virtual functions and the whole 640-byte body, which
+    dominates a pour of spheres. Here every body's position,
     velocities, radius, mass and plane normal are copied once per sweep into
     one compact array, and each pair's lens or cap is computed in place.
     The law, the histories, the loads and the records are those of the
@@ -224,8 +224,8 @@ void demSolver::sphereSweep(contactHistoryTable& next)
     contactRegion& r = in.region;
     load_ = pairLoad();
     // Hertz-Mindlin (the law on spheres) compiled into the loop, its
-    // damping coefficient looked up once per pair of materials (a lookup
-    // per contact was 1.3% of a pour); any other law on spheres through
+    // damping coefficient looked up once per pair of materials (not per
+    // contact); any other law on spheres through
     // its interface
     const bool hertz = dynamic_cast<const hertzMindlinContactLaw*>(law_.get()) != nullptr;
     // Alone, Hertz-Mindlin's loads go straight onto the bodies (not summed

@@ -85,7 +85,7 @@ void freeRotorSplitting(quat& q, vec3& pi, const vec3& I, double dt)
 }
 
 //- The kick's rotation with locked axes (apart: its 3x3 solve's stack
-//  frame made every kick dearer: 1.7% of a sphere pour)
+//  frame would make every kick dearer)
 __attribute__((noinline)) void kickLocked(rigidBody& b, const vec3& T, double halfDt)
 {
     // Locked axes: omega lives on the free world axes f, where the

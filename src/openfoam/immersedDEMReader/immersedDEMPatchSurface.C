@@ -1,0 +1,103 @@
+#include "immersedDEMPatchSurface.H"
+#include "Pstream.H"
+#include "wordRes.H"
+#include <algorithm>
+#include <map>
+#include <tuple>
+
+using namespace immersedDEM;
+using namespace Foam;
+
+
+// The faces of the selected patches as one triangle surface, the same on
+// every processor: each rank triangulates its own faces (fans), all ranks
+// gather all triangles, merge coincident points and sort the triangles, so
+// the wall does not depend on the decomposition. Patch normals point out of
+// the domain, into the wall: they are flipped to point into the fluid.
+triangleSoup Foam::immersedDEMPatchSurface::of
+(
+    const polyMesh& mesh,
+    const dictionary& d,
+    const word& name
+)
+{
+    const wordRes selection(d.get<wordRes>("patches"));
+    const labelHashSet ids(mesh.boundaryMesh().patchSet(selection, false, true));
+    if (ids.empty())
+    {
+        FatalIOErrorInFunction(d)
+            << "Wall '" << name << "', keyword 'patches' in " << d.name()
+            << ": " << selection << " matches no patch of the mesh; the patches are "
+            << mesh.boundaryMesh().names() << nl << exit(FatalIOError);
+    }
+    // Triangles as flat point triples, ordered by corner
+    DynamicList<point> mine;
+    const pointField& pts = mesh.points();
+    for (const label patchi : ids.sortedToc())
+    {
+        const polyPatch& pp = mesh.boundaryMesh()[patchi];
+        if (pp.coupled()) continue;
+        for (const face& f : pp)
+        {
+            for (label k = 1; k + 1 < f.size(); ++k)
+            {
+                mine.append(pts[f[0]]);
+                mine.append(pts[f[k + 1]]);     // flipped: normal into the fluid
+                mine.append(pts[f[k]]);
+            }
+        }
+    }
+    List<pointField> all(Pstream::nProcs());
+    all[Pstream::myProcNo()] = mine;
+    Pstream::gatherList(all);
+    Pstream::scatterList(all);
+
+    using key = std::array<double, 3>;
+    std::vector<std::array<key, 3>> tris;
+    for (const pointField& part : all)
+    {
+        for (label i = 0; i + 2 < part.size(); i += 3)
+        {
+            std::array<key, 3> t;
+            for (int c = 0; c < 3; ++c)
+            {
+                const point& p = part[i + c];
+                t[c] = key{p.x(), p.y(), p.z()};
+            }
+            // Start at the smallest corner, keeping the orientation
+            const int first = int(std::min_element(t.begin(), t.end()) - t.begin());
+            std::rotate(t.begin(), t.begin() + first, t.end());
+            tris.push_back(t);
+        }
+    }
+    if (tris.empty())
+    {
+        FatalIOErrorInFunction(d)
+            << "Wall '" << name << "', keyword 'patches' in " << d.name()
+            << ": the patches " << selection << " have no faces" << nl
+            << exit(FatalIOError);
+    }
+    std::sort(tris.begin(), tris.end());
+    triangleSoup s;
+    std::map<key, int> index;
+    for (const auto& t : tris)
+    {
+        immersedDEM::triFace f;
+        for (int c = 0; c < 3; ++c)
+        {
+            const auto it = index.find(t[c]);
+            if (it == index.end())
+            {
+                f[c] = int(s.points.size());
+                index.emplace(t[c], f[c]);
+                s.points.emplace_back(t[c][0], t[c][1], t[c][2]);
+            }
+            else
+            {
+                f[c] = it->second;
+            }
+        }
+        s.faces.push_back(f);
+    }
+    return s;
+}
