@@ -339,7 +339,7 @@ reuseResult runReuse
             depth = 0.5*(lo + hi);
         }
         b.pose.setPosition(x + depth*dir);
-        dem.invalidate();
+        dem.bodiesChanged();
     }
     const auto engine = overlapEngine::New(s.overlapMethod);
     reuseResult r;

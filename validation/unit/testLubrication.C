@@ -314,7 +314,7 @@ TEST(lubrication, tangentialMotionFeelsNoNormalFilm)
     coasting c;
     c.dem.bodies()[c.ball].velocity = vec3(0.01, 0, 0);
     c.dem.bodies()[c.ball].pose = at(vec3(0, 0, c.R + 0.3*c.cell));
-    c.dem.invalidate();
+    c.dem.bodiesChanged();
     c.dem.advance(1e-3);
     EXPECT_NEAR(c.speed(), 0, 1e-15);
     EXPECT_NEAR(c.dem.bodies()[c.ball].velocity.x(), 0.01, 1e-15);

@@ -447,7 +447,7 @@ TEST(pairFilter, provenGapsBelowTheReachAreNotContacts)
     for (int k = 0; k <= 50; ++k)
     {
         dem.bodies()[1].pose = bodyPose(vec3(0, 0, zTouch + (0.3 - 0.005*k)*reach), qB);
-        dem.invalidate();
+        dem.bodiesChanged();
         dem.computeContacts();
         ASSERT_TRUE(dem.contacts().empty()) << "step " << k;
     }

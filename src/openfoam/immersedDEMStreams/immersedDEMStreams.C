@@ -293,7 +293,7 @@ void Foam::immersedDEMStreams::restore(const dictionary& state, demSolver& dem)
             dem.addBody(st.body(n));
         }
     }
-    dem.invalidate();
+    dem.bodiesChanged();
     Info<< "immersedDEM: restart with " << removed_.size() << " bodies removed so far";
     for (const bodyStream& st : streams_)
     {

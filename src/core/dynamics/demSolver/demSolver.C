@@ -97,7 +97,7 @@ int demSolver::addBody(rigidBody b, bool wall)
     bodies_.push_back(std::move(b));
     isWall_.push_back(wall);
     identity_.push_back(nextIdentity_++);
-    forcesCurrent_ = false;
+    loadsCurrent_ = false;
     return int(bodies_.size()) - 1;
 }
 
@@ -169,7 +169,7 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
     boxes_.clear();
     listBox_.clear();
     neighbours_.clear();
-    forcesCurrent_ = false;
+    loadsCurrent_ = false;
     return kept;
 }
 
@@ -420,7 +420,7 @@ bool demSolver::reusable(int ia, int ib) const
 }
 
 
-bool demSolver::reused
+bool demSolver::carryRecord
 (
     const reuseRecord& rec, int ia, int ib, contactGeometry& g,
     bool anyMotion, double& moved, vec3* u0
@@ -990,7 +990,7 @@ void demSolver::computeContacts()
         filter_.beginSweep();
     }
     const bool full = fullNext_ || !settings_.reuseContacts;
-    ++sweep_;
+    ++contactPass_;
     contactGeometry g;
     const bool lub = lubricating();
     if (lub)
@@ -1012,10 +1012,10 @@ void demSolver::computeContacts()
         {
             const auto it = reuse_.find(p);
             double moved = 0;
-            if (it != reuse_.end() && reused(it->second, p.first, p.second, g, false, moved))
+            if (it != reuse_.end() && carryRecord(it->second, p.first, p.second, g, false, moved))
             {
                 ++it->second.count;
-                it->second.sweep = sweep_;
+                it->second.lastPass = contactPass_;
                 ++counters_.reusedEvaluations;
                 applyContacts(p.first, p.second, g, next);
                 if (filter) filter_.stillTouching(p.first, p.second);
@@ -1064,7 +1064,7 @@ void demSolver::computeContacts()
                 if
                 (
                     it->second.regions.size() == g.regions.size()
-                 && reused(it->second, p.first, p.second, carried, true, moved, &u)
+                 && carryRecord(it->second, p.first, p.second, carried, true, moved, &u)
                  && moved > 0 && it->second.depth > 0
                 )
                 {
@@ -1116,7 +1116,7 @@ void demSolver::computeContacts()
             rec.fraction = fraction;
             rec.slope = slope;
             rec.count = 0;
-            rec.sweep = sweep_;
+            rec.lastPass = contactPass_;
         }
         if (filter)
         {
@@ -1194,7 +1194,7 @@ void demSolver::computeContacts()
     // Records of pairs not in contact (or not reusable) now are dropped
     for (auto it = reuse_.begin(); it != reuse_.end();)
     {
-        it = it->second.sweep == sweep_ ? std::next(it) : reuse_.erase(it);
+        it = it->second.lastPass == contactPass_ ? std::next(it) : reuse_.erase(it);
     }
     if (filter)
     {
@@ -1209,7 +1209,7 @@ void demSolver::computeContacts()
         touched_[p.first] = 1;
         touched_[p.second] = 1;
     }
-    forcesCurrent_ = true;
+    loadsCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -1617,7 +1617,7 @@ demSolver::stepChoice demSolver::stepFor(double T) const
 
 void demSolver::step(double dt)
 {
-    if (!forcesCurrent_)
+    if (!loadsCurrent_)
     {
         lastDt_ = 0;
         loadTime_ = time_;

@@ -98,7 +98,7 @@ overlapSeparation initialOverlaps::separate(demSolver& dem, int maxIterations)
                 bodies[i].pose.setPosition(bodies[i].pose.position() + move[i]/count[i]);
             }
         }
-        dem.invalidate();
+        dem.bodiesChanged();
     }
 
     for (size_t i = 0; i < bodies.size(); ++i)

@@ -300,7 +300,7 @@ insertionReport bodyInsertion::insert
             r.complete = true;
         }
     }
-    dem.invalidate();
+    dem.bodiesChanged();
     return r;
 }
 

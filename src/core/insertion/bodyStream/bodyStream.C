@@ -179,7 +179,7 @@ streamStepReport bodyStream::insert(demSolver& dem, double t)
     r.waiting = r.due - state_.placed;
     if (r.placed > 0)
     {
-        dem.invalidate();
+        dem.bodiesChanged();
     }
     return r;
 }
