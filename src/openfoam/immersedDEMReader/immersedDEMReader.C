@@ -540,57 +540,45 @@ void Foam::immersedDEMReader::initialOverlaps
 )
 {
     namespace io = immersedDEM::initialOverlaps;
-    std::vector<immersedDEM::initialOverlap> found;
+    // (the overlap engine's errors name the contact settings)
     try
     {
-        found = io::find(dem);
+        const std::vector<immersedDEM::initialOverlap> found = io::find(dem);
+        if (found.empty())
+        {
+            Info<< "    No overlaps at the start" << endl;
+            return;
+        }
+        if (!dem.settings().separateInitialOverlaps)
+        {
+            WarningInFunction
+                << found.size() << " pairs overlap at the start (" << dictName
+                << "); the contacts push them apart in the first steps:" << nl
+                << io::text(dem, found).c_str()
+                << "    (contact/initialOverlaps keep; 'separate', the default,"
+                << " moves them apart before the first step)" << endl;
+            return;
+        }
+        Info<< "    " << found.size() << " pairs overlap at the start:" << nl
+            << io::text(dem, found).c_str();
+        const immersedDEM::overlapSeparation s = io::separate(dem);
+        Info<< "    initialOverlaps separate: " << s.bodiesMoved << " bodies moved apart"
+            << " in " << s.iterations << " iterations, the farthest by "
+            << s.largestMove << " m" << endl;
+        if (!s.remaining.empty())
+        {
+            WarningInFunction
+                << s.remaining.size() << " pairs of " << dictName
+                << " still overlap after " << s.iterations
+                << " separation iterations (walls or fixed bodies into each"
+                << " other, or a body held between two walls):" << nl
+                << io::text(dem, s.remaining).c_str() << endl;
+        }
     }
     catch (const coreError& err)
     {
         FatalErrorInFunction
-            << "Checking the bodies of " << dictName << " for overlaps at the"
-            << " start: " << err.what() << " (sub-dictionary contact)"
-            << exit(FatalError);
-    }
-    if (found.empty())
-    {
-        Info<< "    No overlaps at the start" << endl;
-        return;
-    }
-    if (!dem.settings().separateInitialOverlaps)
-    {
-        WarningInFunction
-            << found.size() << " pairs overlap at the start (" << dictName
-            << "); the contacts push them apart in the first steps:" << nl
-            << io::text(dem, found).c_str()
-            << "    (contact/initialOverlaps keep; 'separate', the default,"
-            << " moves them apart before the first step)" << endl;
-        return;
-    }
-    Info<< "    " << found.size() << " pairs overlap at the start:" << nl
-        << io::text(dem, found).c_str();
-    immersedDEM::overlapSeparation s;
-    try
-    {
-        s = io::separate(dem);
-    }
-    catch (const coreError& err)
-    {
-        FatalErrorInFunction
-            << "Separating the bodies of " << dictName << " that overlap at"
-            << " the start: " << err.what() << " (sub-dictionary contact)"
-            << exit(FatalError);
-    }
-    Info<< "    initialOverlaps separate: " << s.bodiesMoved << " bodies moved apart"
-        << " in " << s.iterations << " iterations, the farthest by "
-        << s.largestMove << " m" << endl;
-    if (!s.remaining.empty())
-    {
-        WarningInFunction
-            << s.remaining.size() << " pairs of " << dictName
-            << " still overlap after " << s.iterations
-            << " separation iterations (walls or fixed bodies into each"
-            << " other, or a body held between two walls):" << nl
-            << io::text(dem, s.remaining).c_str() << endl;
+            << "Overlaps at the start of " << dictName << ": " << err.what()
+            << " (sub-dictionary contact)" << exit(FatalError);
     }
 }

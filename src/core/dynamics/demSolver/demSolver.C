@@ -1721,17 +1721,21 @@ int demSolver::advance(double T, const std::function<void()>& afterStep)
 }
 
 
+double demSolver::smallerVolume(const contactRecord& c) const
+{
+    const double VA = bodies_[c.a].geometry->volume();
+    const double VB = bodies_[c.b].geometry->volume();
+    return isWall_[c.a] ? VB : isWall_[c.b] ? VA : std::min(VA, VB);
+}
+
+
 void demSolver::checkDepths() const
 {
     for (const contactRecord& c : contacts_)
     {
         const rigidBody& A = bodies_[c.a];
         const rigidBody& B = bodies_[c.b];
-        const double V = isWall_[c.a]
-            ? B.geometry->volume()
-            : isWall_[c.b]
-            ? A.geometry->volume()
-            : std::min(A.geometry->volume(), B.geometry->volume());
+        const double V = smallerVolume(c);
         if (!(c.region.volume <= maxOverlapFraction*V))
         {
             std::ostringstream msg;

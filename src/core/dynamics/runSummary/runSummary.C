@@ -18,11 +18,7 @@ void runSummary::track(const demSolver& dem)
             maxVolume_ = c.region.volume;
             maxVolumeTime_ = dem.time();
             maxVolumePair_ = A.name + "-" + B.name;
-            const double V = dem.isWall(c.a)
-                ? B.geometry->volume()
-                : dem.isWall(c.b)
-                ? A.geometry->volume()
-                : std::min(A.geometry->volume(), B.geometry->volume());
+            const double V = dem.smallerVolume(c);
             maxVolumeFraction_ = V > 0 ? maxVolume_/V : 0;
         }
     }
