@@ -60,7 +60,7 @@ void demSolver::sphereCandidates()
 {
     const size_t n = bodies_.size();
     sphereBodies_.resize(n);
-    boxes_.resize(n);
+    sphereBoxes_.resize(n);
     sphereWalls_.clear();
     sphereOthers_.clear();
     double cell = 0;
@@ -84,12 +84,12 @@ void demSolver::sphereCandidates()
         {
             // (as sphereShape::worldBox)
             const vec3& c = s.state.position;
-            boxes_[i] = axisAlignedBox(c.array() - s.radius, c.array() + s.radius);
-            cell = std::max(cell, boxes_[i].span().maxCoeff());
+            sphereBoxes_[i] = axisAlignedBox(c.array() - s.radius, c.array() + s.radius);
+            cell = std::max(cell, sphereBoxes_[i].span().maxCoeff());
             sphereOthers_.push_back(int(i));
         }
     }
-    refreshNeighbours(boxes_, sphereOthers_, cell);
+    broad_.refresh(sphereBoxes_, sphereOthers_, cell, counters_);
 
     // The pairs that touch (the regions' own first test, sphereOverlap),
     // in the order of candidatePairs: walls against the dynamic bodies,
@@ -131,7 +131,7 @@ void demSolver::sphereCandidates()
             {
                 // (the lowest point of the grown box along n, with a
                 // margin for the round-off of the step's own test)
-                const axisAlignedBox& g = listBox_[i];
+                const axisAlignedBox& g = broad_.grownBoxes()[i];
                 const bool behind =
                     n.dot(g.centre() - p0) - n.cwiseAbs().dot(0.5*g.span())
                   < 1e-9*g.span().maxCoeff();
@@ -170,12 +170,12 @@ void demSolver::sphereCandidates()
     if (sphereNeighboursBuild_ != counters_.broadPhaseBuilds)
     {
         sphereNeighbours_.clear();
-        for (const auto& p : neighbours_)
+        for (const auto& p : broad_.neighbours())
         {
             const double RA = sphereBodies_[p.first].radius;
             const double RB = sphereBodies_[p.second].radius;
-            const axisAlignedBox& gA = listBox_[p.first];
-            const axisAlignedBox& gB = listBox_[p.second];
+            const axisAlignedBox& gA = broad_.grownBoxes()[p.first];
+            const axisAlignedBox& gB = broad_.grownBoxes()[p.second];
             const vec3 gap =
                 ((gB.min.array() + RB) - (gA.max.array() - RA))
                .max((gA.min.array() + RA) - (gB.max.array() - RB))
@@ -263,8 +263,8 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         // centre (two spheres: sphereDepth, with the lens's distance of
         // the centres), the Hertz radius of the two spheres (B's on a
         // plane)
-        in.material = pairMaterialOf(A.material, B.material);
-        in.effectiveMass = effectiveMass(A.mass, A.dynamic, B.mass, B.dynamic);
+        in.material = materials_.of(A.material, B.material);
+        in.effectiveMass = demPair::effectiveMass(A.mass, A.dynamic, B.mass, B.dynamic);
         in.overlapDepth =
             plane
           ? B.radius
