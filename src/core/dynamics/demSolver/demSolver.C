@@ -1,6 +1,4 @@
 #include "demSolver.H"
-#include "demSolverRegion.H"
-#include "pairLoadExchange.H"
 #include "rigidBodyIntegrator.H"
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
@@ -113,50 +111,17 @@ std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
     isWall_.swap(isWall);
     identity_.swap(identity);
 
-    // Pairs keep their order (wall or lower index first): renumbering
-    // keeps the order of the indices
-    history_.renumber(newIndex);
+    contacts_.renumber(newIndex);
     // Reuse records are keyed by the old indices: the next contacts are
     // evaluated in full
     reuse_.clear();
     films_.clear();
-    std::vector<contactRecord> contacts;
-    for (contactRecord c : contacts_)
-    {
-        if (newIndex[c.a] >= 0 && newIndex[c.b] >= 0)
-        {
-            c.a = newIndex[c.a];
-            c.b = newIndex[c.b];
-            contacts.push_back(c);
-        }
-    }
-    contacts_.swap(contacts);
     stepSize_.renumber(newIndex);
 
     // The broad phase starts afresh
     broad_.clear();
     loadsCurrent_ = false;
     return kept;
-}
-
-
-void demSolver::addPairLoad(const pairLoad& l)
-{
-    addContactLoad(l);
-    rigidBody& A = bodies_[l.a];
-    rigidBody& B = bodies_[l.b];
-    A.lubricationForce += l.filmForceA;
-    A.lubricationTorque += l.filmTorqueA;
-    B.lubricationForce += l.filmForceB;
-    B.lubricationTorque += l.filmTorqueB;
-}
-
-
-std::vector<std::pair<int, int>> demSolver::pairsInContact() const
-{
-    std::vector<std::pair<int, int>> pairs(history_.size());
-    for (size_t k = 0; k < pairs.size(); ++k) pairs[k] = history_.key(k);
-    return pairs;
 }
 
 
@@ -179,106 +144,6 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
         bodies_, isWall_, margin, dropBeyond,
         [this](const std::pair<int, int>& p) { return reuse_.carries(p); },
         counters_
-    );
-}
-
-
-bool demSolver::applyContacts
-(
-    int ia, int ib, const contactGeometry& g, contactHistoryTable& next
-)
-{
-    const rigidBody& A = bodies_[ia];
-    const rigidBody& B = bodies_[ib];
-    if (g.regions.empty())
-    {
-        return false;
-    }
-
-    const double mA = A.mass(), mB = B.mass();
-    const double Reff = effectiveRadius(ia, ib);
-
-    contactInput in;
-    in.material = materials_.of(A.material, B.material);
-    in.effectiveMass = demPair::effectiveMass(mA, A.dynamic(), mB, B.dynamic());
-    in.characteristicLength =
-        settings_.characteristicLength > 0 ? settings_.characteristicLength : Reff;
-
-    // Overlap depth for laws on spheres: B is a sphere (walls are A)
-    in.overlapDepth = 0;
-    in.effectiveRadius = Reff;
-    if (law_->needsSpheres())
-    {
-        const auto* sb = shapeAs<sphereShape>(*B.geometry);
-        if (const auto* sa = shapeAs<sphereShape>(*A.geometry))
-        {
-            in.overlapDepth =
-                sphereDepth(A.pose.position(), sa->radius(), B.pose.position(), sb->radius());
-            in.effectiveRadius = sa->radius()*sb->radius()/(sa->radius() + sb->radius());
-        }
-        else
-        {
-            in.overlapDepth = sb->radius() - A.geometry->signedDistance(A.pose, B.pose.position());
-            in.effectiveRadius = sb->radius();
-        }
-    }
-    in.flatFaceArea =
-        std::min(A.geometry->largestFlatFace(), B.geometry->largestFlatFace());
-    in.pairVolume = g.volume();
-    in.dt = lastDt_;
-
-    const bodyState a{A.pose.position(), A.velocity, A.angularVelocity};
-    const bodyState b{B.pose.position(), B.velocity, B.angularVelocity};
-    applyRegions(ia, a, ib, b, g.regions.data(), g.regions.size(), in, next);
-    return true;
-}
-
-
-void demSolver::applyRegions
-(
-    int ia, const bodyState& A, int ib, const bodyState& B,
-    const contactRegion* regions, size_t nRegions, contactInput& in,
-    contactHistoryTable& next
-)
-{
-    // The pair's histories of the last step (pairs come in increasing
-    // order: found by the table's cursor), and its entry in the next
-    const auto key = std::make_pair(ia, ib);
-    const contactHistoryTable::range oldHistory = history_.find(key);
-    next.beginPair(key);
-    taken_.assign(oldHistory.size(), 0);
-    for (size_t k = 0; k < nRegions; ++k)
-    {
-        const int best = nearestHistory(oldHistory, regions[k], taken_.data());
-        if (best >= 0)
-        {
-            taken_[best] = 1;
-        }
-        applyRegion
-        (
-            ia, A, ib, B, regions[k], in, best >= 0 ? oldHistory.first + best : nullptr, next
-        );
-    }
-}
-
-
-void demSolver::applyRegion
-(
-    int ia, const bodyState& A, int ib, const bodyState& B,
-    const contactRegion& r, contactInput& in, const contactHistory* old,
-    contactHistoryTable& next
-)
-{
-    // Twisting friction (contactLaw::twistingCouple) for the laws on
-    // overlap regions: a flat face resting on another stops spinning
-    // about its normal (a point's friction has no couple about it). The
-    // law on spheres keeps its point contact (as LIGGGHTS's)
-    const contactLaw& law = *law_;
-    applyRegionWith
-    (
-        ia, A, ib, B, r, in, old, next,
-        [&law](const contactInput& i, contactHistory& h) { return law.evaluate(i, h); },
-        !law.needsSpheres(), false
     );
 }
 
@@ -334,8 +199,8 @@ double demSolver::engineReach() const
 
 void demSolver::contactOf
 (
-    const std::pair<int, int>& p, contactGeometry& g, contactHistoryTable& next,
-    bool full
+    const pairContacts::context& c, const std::pair<int, int>& p,
+    contactGeometry& g, bool full
 )
 {
     const rigidBody& A = bodies_[p.first];
@@ -348,7 +213,7 @@ void demSolver::contactOf
     // do not depend on the filter)
     if (!full && reuse_.carry(p, bodies_, isWall_, g, counters_))
     {
-        applyContacts(p.first, p.second, g, next);
+        contacts_.apply(c, p.first, p.second, g);
         if (filter) filter_.stillTouching(p.first, p.second);
         return;
     }
@@ -363,7 +228,7 @@ void demSolver::contactOf
     g = engine_->evaluate(*A.geometry, A.pose, *B.geometry, B.pose, pairSettings(p.first, p.second));
     ++counters_.pairEvaluations;
     counters_.queries += g.queries;
-    const bool touching = applyContacts(p.first, p.second, g, next);
+    const bool touching = contacts_.apply(c, p.first, p.second, g);
     if (touching && reuse_.reusable(*A.geometry, *B.geometry))
     {
         reuse_.record(p, bodies_, isWall_, g, full);
@@ -397,9 +262,8 @@ void demSolver::computeContacts()
         b.clearContactForces();
         updateExternalLoad(b, loadTime_);
     }
-    contacts_.clear();
-    contactHistoryTable& next = nextHistory_;
-    next.clear();
+    contacts_.beginPass();
+    const pairContacts::context c = contactContext();
     const bool filter = settings_.rejectSeparated;
     if (filter)
     {
@@ -422,10 +286,9 @@ void demSolver::computeContacts()
     // This process's pairs (all of them, alone): their loads, summed per
     // pair, are added to the bodies in the order of the pairs once every
     // process's are gathered, so the sums do not depend on who made them
-    loads_.clear();
     if (sphereSweepApplies())
     {
-        sphereSweep(next);
+        spheres_.sweep(c, contacts_, broad_, comm_.get(), identity_, counters_);
     }
     else
     {
@@ -442,39 +305,29 @@ void demSolver::computeContacts()
             {
                 continue;
             }
-            load_ = pairLoad();
-            load_.a = p.first;
-            load_.b = p.second;
-            load_.contactsFrom = contacts_.size();
+            contacts_.beginPair(p.first, p.second);
             if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
             {
-                contactOf(p, g, next, full);
+                contactOf(c, p, g, full);
             }
             if (lub)
             {
                 const auto lubStart = clock::now();
                 films_.lubricate
                 (
-                    p.first, p.second, bodies_, isWall_, contacts_,
-                    load_.contactsFrom, filmStep, load_, counters_
+                    p.first, p.second, bodies_, isWall_, contacts_.records(),
+                    contacts_.load().contactsFrom, filmStep, contacts_.load(), counters_
                 );
                 counters_.lubricationSeconds += since(lubStart);
             }
-            load_.contactsTo = contacts_.size();
-            if (load_.film || load_.contactsTo > load_.contactsFrom)
-            {
-                loads_.push_back(load_);
-            }
+            contacts_.endPair();
         }
     }
     if (comm_)
     {
-        pairLoadExchange::gather(*comm_, loads_, contacts_, next);
+        contacts_.gather(*comm_);
     }
-    for (const pairLoad& l : loads_)
-    {
-        addPairLoad(l);
-    }
+    contacts_.addLoads(bodies_);
     if (lub)
     {
         films_.endPass();
@@ -485,15 +338,7 @@ void demSolver::computeContacts()
     {
         filter_.endSweep();
     }
-    next.finish();
-    history_.swap(next);
-    touched_.resize(bodies_.size(), 0);
-    for (size_t k = 0; k < history_.size(); ++k)
-    {
-        const auto p = history_.key(k);
-        touched_[p.first] = 1;
-        touched_[p.second] = 1;
-    }
+    contacts_.endPass(bodies_.size());
     loadsCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -600,7 +445,7 @@ double demSolver::smallerVolume(const contactRecord& c) const
 
 void demSolver::checkDepths() const
 {
-    for (const contactRecord& c : contacts_)
+    for (const contactRecord& c : contacts_.records())
     {
         const rigidBody& A = bodies_[c.a];
         const rigidBody& B = bodies_[c.b];

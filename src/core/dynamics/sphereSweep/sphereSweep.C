@@ -1,21 +1,5 @@
-/*---------------------------------------------------------------------------*\
-Description
-    demSolver's sphere sweep: the contacts of spheres among themselves and
-    with plane walls under a law on spheres (hertzMindlin), without the
-    lubrication film. The general loop (computeContacts) asks the pair
-    filter, calls the overlap engine through its interface (a vector of
-    regions per pair), and reads each body's mass, radius and state through
-    the shape's virtual functions and the whole 640-byte body, which
-    dominates a pour of spheres. Here every body's position,
-    velocities, radius, mass and plane normal are copied once per sweep into
-    one compact array, and each pair's lens or cap is computed in place.
-    The law, the histories, the loads and the records are those of the
-    general loop (applyRegions), so the results are the same bit for bit
-    (test demProcesses.sphereSweepIsTheGeneralLoopBitForBit).
-\*---------------------------------------------------------------------------*/
-
-#include "demSolver.H"
-#include "demSolverRegion.H"
+#include "sphereSweep.H"
+#include "pairContactsRegion.H"
 #include "hertzMindlinContactLaw.H"
 #include "restitutionCalibration.H"
 #include "sphereOverlap.H"
@@ -28,26 +12,31 @@ Description
 namespace immersedDEM
 {
 
-bool demSolver::sphereSweepApplies() const
+bool sphereSweep::applies
+(
+    const demSettings& s, const std::string& engineType,
+    const contactLaw& law, bool films,
+    const std::vector<rigidBody>& bodies, const std::vector<char>& isWall
+)
 {
     if
     (
-        !settings_.sphereSweep
-     || engine_->type() != "sphere"
-     || !law_->needsSpheres()
-     || lubricating()
+        !s.sphereSweep
+     || engineType != "sphere"
+     || !law.needsSpheres()
+     || films
     )
     {
         return false;
     }
-    for (size_t i = 0; i < bodies_.size(); ++i)
+    for (size_t i = 0; i < bodies.size(); ++i)
     {
-        const shape& s = *bodies_[i].geometry;
+        const shape& s = *bodies[i].geometry;
         const bool sphere = shapeAs<sphereShape>(s) != nullptr;
         const bool plane = shapeAs<halfSpaceShape>(s) != nullptr;
         // Bodies are spheres; walls are spheres or planes (the engine's
         // own range; a plane is always the pair's first body, A)
-        if (!(sphere || (isWall_[i] && plane)))
+        if (!(sphere || (isWall[i] && plane)))
         {
             return false;
         }
@@ -56,9 +45,13 @@ bool demSolver::sphereSweepApplies() const
 }
 
 
-void demSolver::sphereCandidates()
+void sphereSweep::candidates
+(
+    const std::vector<rigidBody>& bodies, const std::vector<char>& isWall,
+    broadPhase& broad, demCounters& work
+)
 {
-    const size_t n = bodies_.size();
+    const size_t n = bodies.size();
     sphereBodies_.resize(n);
     sphereBoxes_.resize(n);
     sphereWalls_.clear();
@@ -66,9 +59,9 @@ void demSolver::sphereCandidates()
     double cell = 0;
     for (size_t i = 0; i < n; ++i)
     {
-        const rigidBody& b = bodies_[i];
+        const rigidBody& b = bodies[i];
         sphereBody& s = sphereBodies_[i];
-        s.state = bodyState{b.pose.position(), b.velocity, b.angularVelocity};
+        s.state = pairContacts::bodyState{b.pose.position(), b.velocity, b.angularVelocity};
         const auto* sp = shapeAs<sphereShape>(*b.geometry);
         s.radius = sp ? sp->radius() : 0;
         s.mass = b.mass();
@@ -76,7 +69,7 @@ void demSolver::sphereCandidates()
             s.radius > 0 ? vec3(vec3::Zero()) : b.pose.vectorToWorld(vec3::UnitZ());
         s.material = b.material;
         s.dynamic = b.dynamic();
-        if (isWall_[i])
+        if (isWall[i])
         {
             sphereWalls_.push_back(int(i));
         }
@@ -89,7 +82,7 @@ void demSolver::sphereCandidates()
             sphereOthers_.push_back(int(i));
         }
     }
-    broad_.refresh(sphereBoxes_, sphereOthers_, cell, counters_);
+    broad.refresh(sphereBoxes_, sphereOthers_, cell, work);
 
     // The pairs that touch (the regions' own first test, sphereOverlap),
     // in the order of candidatePairs: walls against the dynamic bodies,
@@ -116,7 +109,7 @@ void demSolver::sphereCandidates()
             W.state.position != sphereWallNearPose_[2*k]
          || W.planeNormal != sphereWallNearPose_[2*k + 1];
     }
-    if (wallsMoved || sphereWallNearBuild_ != counters_.broadPhaseBuilds)
+    if (wallsMoved || sphereWallNearBuild_ != work.broadPhaseBuilds)
     {
         sphereWallNear_.clear();
         sphereWallNearPose_.clear();
@@ -131,7 +124,7 @@ void demSolver::sphereCandidates()
             {
                 // (the lowest point of the grown box along n, with a
                 // margin for the round-off of the step's own test)
-                const axisAlignedBox& g = broad_.grownBoxes()[i];
+                const axisAlignedBox& g = broad.grownBoxes()[i];
                 const bool behind =
                     n.dot(g.centre() - p0) - n.cwiseAbs().dot(0.5*g.span())
                   < 1e-9*g.span().maxCoeff();
@@ -141,7 +134,7 @@ void demSolver::sphereCandidates()
                 }
             }
         }
-        sphereWallNearBuild_ = counters_.broadPhaseBuilds;
+        sphereWallNearBuild_ = work.broadPhaseBuilds;
     }
     // (each pair written, kept by advancing the count: whether a listed
     // pair touches is a coin toss the branch predictor lost, the largest
@@ -167,15 +160,15 @@ void demSolver::sphereCandidates()
     // G are R_a + R_b or farther apart cannot touch meanwhile. The grown
     // boxes hold about twice the pairs of this criterion (their tests were
     // the largest cost of this function)
-    if (sphereNeighboursBuild_ != counters_.broadPhaseBuilds)
+    if (sphereNeighboursBuild_ != work.broadPhaseBuilds)
     {
         sphereNeighbours_.clear();
-        for (const auto& p : broad_.neighbours())
+        for (const auto& p : broad.neighbours())
         {
             const double RA = sphereBodies_[p.first].radius;
             const double RB = sphereBodies_[p.second].radius;
-            const axisAlignedBox& gA = broad_.grownBoxes()[p.first];
-            const axisAlignedBox& gB = broad_.grownBoxes()[p.second];
+            const axisAlignedBox& gA = broad.grownBoxes()[p.first];
+            const axisAlignedBox& gB = broad.grownBoxes()[p.second];
             const vec3 gap =
                 ((gB.min.array() + RB) - (gA.max.array() - RA))
                .max((gA.min.array() + RA) - (gB.max.array() - RB))
@@ -187,7 +180,7 @@ void demSolver::sphereCandidates()
                 sphereNeighbours_.push_back(p);
             }
         }
-        sphereNeighboursBuild_ = counters_.broadPhaseBuilds;
+        sphereNeighboursBuild_ = work.broadPhaseBuilds;
     }
     sphereBodyPairs_.resize(sphereNeighbours_.size());
     size_t nBody = 0;
@@ -207,35 +200,45 @@ void demSolver::sphereCandidates()
 }
 
 
-void demSolver::sphereSweep(contactHistoryTable& next)
+void sphereSweep::sweep
+(
+    const pairContacts::context& c, pairContacts& contacts,
+    broadPhase& broad, const demCommunicator* comm,
+    const std::vector<std::uint64_t>& identity, demCounters& work
+)
 {
-    ++counters_.sphereSweeps;
+    ++work.sphereSweeps;
     const auto searchStart = std::chrono::steady_clock::now();
-    sphereCandidates();
-    counters_.searchSeconds +=
+    candidates(c.bodies, c.isWall, broad, work);
+    work.searchSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStart).count();
 
     // (the law on spheres reads neither the volume law's length nor the
     // potential law's flat face)
     contactInput in;
     in.flatFaceArea = 0;
-    in.dt = lastDt_;
+    in.dt = c.dt;
     // (the region measured in place, in the law's input)
     contactRegion& r = in.region;
-    load_ = pairLoad();
+    pairLoad& load = contacts.load();
+    load = pairLoad();
     // Hertz-Mindlin (the law on spheres) compiled into the loop, its
     // damping coefficient looked up once per pair of materials (not per
     // contact); any other law on spheres through
     // its interface
-    const bool hertz = dynamic_cast<const hertzMindlinContactLaw*>(law_.get()) != nullptr;
+    const bool hertz = dynamic_cast<const hertzMindlinContactLaw*>(&c.law) != nullptr;
     // Alone, Hertz-Mindlin's loads go straight onto the bodies (not summed
     // per pair first: a pair has one region, so the sums are the same)
-    const bool direct = hertz && !comm_;
-    const size_t nMaterials = materials_.size();
+    const bool direct = hertz && !comm;
+    const size_t nMaterials = c.materials.size();
     sphereDamping_.assign(nMaterials*nMaterials, -1);
     for (const auto& p : spherePairs_)
     {
-        if (!owns(p.first, p.second))
+        if
+        (
+            comm
+         && demCommunicator::owner(identity[p.first], identity[p.second], comm->size()) != comm->rank()
+        )
         {
             continue;
         }
@@ -257,18 +260,18 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         {
             continue;
         }
-        ++counters_.pairEvaluations;
+        ++work.pairEvaluations;
 
         // As applyContacts: the depth from A's signed distance of B's
-        // centre (two spheres: sphereDepth, with the lens's distance of
+        // centre (two spheres: pairContacts::sphereDepth, with the lens's distance of
         // the centres), the Hertz radius of the two spheres (B's on a
         // plane)
-        in.material = materials_.of(A.material, B.material);
+        in.material = c.materials.of(A.material, B.material);
         in.effectiveMass = demPair::effectiveMass(A.mass, A.dynamic, B.mass, B.dynamic);
         in.overlapDepth =
             plane
           ? B.radius
-          - bodies_[p.first].geometry->signedDistance(bodies_[p.first].pose, B.state.position)
+          - c.bodies[p.first].geometry->signedDistance(c.bodies[p.first].pose, B.state.position)
           : A.radius + B.radius - distance;
         in.effectiveRadius =
             plane ? B.radius : A.radius*B.radius/(A.radius + B.radius);
@@ -277,28 +280,28 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         // (the film's loads stay zero: set once above)
         if (!direct)
         {
-            load_.forceA = load_.torqueA = load_.forceB = load_.torqueB = vec3::Zero();
-            load_.a = p.first;
-            load_.b = p.second;
-            load_.contactsFrom = contacts_.size();
+            load.forceA = load.torqueA = load.forceB = load.torqueB = vec3::Zero();
+            load.a = p.first;
+            load.b = p.second;
+            load.contactsFrom = contacts.records().size();
         }
         // (applyRegions of one region: no other region takes a history)
         const auto key = std::make_pair(p.first, p.second);
-        const contactHistoryTable::range old = history_.find(key);
-        next.beginPair(key);
-        const int best = nearestHistory(old, r, nullptr);
+        const contactHistoryTable::range old = contacts.history().find(key);
+        contacts.next().beginPair(key);
+        const int best = pairContacts::nearestHistory(old, r, nullptr, c.cellSize);
         const contactHistory* oldBest = best >= 0 ? old.first + best : nullptr;
         if (hertz)
         {
-            double& c = sphereDamping_[size_t(A.material)*nMaterials + size_t(B.material)];
-            if (c < 0)
+            double& d = sphereDamping_[size_t(A.material)*nMaterials + size_t(B.material)];
+            if (d < 0)
             {
-                c = restitutionCalibration::damping(in.material.restitution, 1.5);
+                d = restitutionCalibration::damping(in.material.restitution, 1.5);
             }
-            const double damping = c;
-            applyRegionWith
+            const double damping = d;
+            contacts.applyRegionWith
             (
-                p.first, A.state, p.second, B.state, r, in, oldBest, next,
+                c, p.first, A.state, p.second, B.state, r, in, oldBest,
                 [damping](const contactInput& i, contactHistory& h)
                 {
                     return hertzMindlinContactLaw::force(i, h, damping);
@@ -308,23 +311,23 @@ void demSolver::sphereSweep(contactHistoryTable& next)
         }
         else
         {
-            applyRegion(p.first, A.state, p.second, B.state, r, in, oldBest, next);
+            contacts.applyRegion(c, p.first, A.state, p.second, B.state, r, in, oldBest);
         }
         // Alone, the pairs' loads are added to the bodies now, in the
-        // order of the pairs as computeContacts adds loads_ (the film's
+        // order of the pairs as pairContacts::addLoads adds them (the film's
         // are zero); shared, after the processes' loads are gathered
         if (direct)
         {
             continue;
         }
-        load_.contactsTo = contacts_.size();
-        if (comm_)
+        load.contactsTo = contacts.records().size();
+        if (comm)
         {
-            loads_.push_back(load_);
+            contacts.keepLoad();
         }
         else
         {
-            addContactLoad(load_);
+            pairContacts::addContactLoad(c.bodies, load);
         }
     }
 }
