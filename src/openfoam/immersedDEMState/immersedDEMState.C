@@ -52,7 +52,10 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     Info<< "immersedDEM: reading " << properties_.objectPath() << endl;
     const fileName surfaceDir = mesh.time().globalPath()/mesh.time().constant()/"triSurface";
     std::vector<bodyStream> streams;
-    dem_ = immersedDEMReader::read(properties_, surfaceDir, g.value(), &mesh, &streams);
+    dem_ = immersedDEMReader::read
+    (
+        properties_, surfaceDir, g.value(), &mesh, &streams, &settings_
+    );
     dem_->setTime(mesh.time().value());
     // In parallel the ranks share out the DEM's pair evaluations (every
     // rank holds every body; the trajectories stay the serial run's)

@@ -1,0 +1,232 @@
+#include "immersedDEMDictionaryReaders.H"
+#include "immersedDEMReader.H"
+#include "immersedDEMPatchSurface.H"
+#include "immersedDEMSlabs.H"
+#include "dictionaryChecks.H"
+#include "immersedDEMInsertion.H"
+#include "timeStepExplanation.H"
+#include "initialOverlaps.H"
+#include "sphereShape.H"
+#include "triangleMeshShape.H"
+#include "halfSpaceShape.H"
+#include "wallMeshShape.H"
+#include "surfaceFileIO.H"
+#include "coreError.H"
+#include "unitConversion.H"
+#include "IOstreams.H"
+#include "polyMesh.H"
+
+#include <algorithm>
+#include <map>
+
+
+using namespace immersedDEM;
+using namespace Foam;
+
+
+Eigen::Vector3i Foam::immersedDEMReaders::readLocks(const dictionary& d, const word& key)
+{
+    const vector v = d.getOrDefault<vector>(key, Zero);
+    Eigen::Vector3i lock;
+    for (direction i = 0; i < 3; ++i)
+    {
+        if (v[i] != 0 && v[i] != 1)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword '" << key << "' in " << d.name()
+                << " takes 0 (free) or 1 (locked) per axis, not " << v << nl
+                << exit(FatalIOError);
+        }
+        lock[i] = int(v[i]);
+    }
+    return lock;
+}
+
+
+
+
+rigidBody Foam::immersedDEMReaders::readBody
+(
+    const word& name,
+    const dictionary& d,
+    const fileName& surfaceDir,
+    const std::vector<contactMaterial>& materials,
+    surfaceCache& surfaces
+)
+{
+    const word shapeType = immersedDEMChecks::oneOf(d, "shape", {"sphere", "triangleMesh"});
+    wordList allowed
+    {
+        "shape", "density", "material", "position", "rotationAxis",
+        "rotationAngle", "velocity", "angularVelocity", "motion",
+        "lockTranslation", "lockRotation"
+    };
+    std::shared_ptr<const shape> geometry;
+    if (shapeType == "sphere")
+    {
+        allowed.append("radius");
+        immersedDEMChecks::allowOnly(d, allowed);
+        geometry = std::make_shared<sphereShape>(immersedDEMChecks::positive(d, "radius"));
+    }
+    else
+    {
+        allowed.append(wordList{"file", "scale", "checkSelfIntersection"});
+        immersedDEMChecks::allowOnly(d, allowed);
+        const fileName file = surfaceDir/d.get<fileName>("file");
+        const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+        const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
+        std::shared_ptr<const triangleMeshShape>& shared =
+            surfaces[std::make_tuple(std::string(file), double(scale), selfCheck)];
+        try
+        {
+            if (!shared)
+            {
+                shared = triangleMeshShape::fromFile(file, scale, selfCheck);
+                for (const std::string& w : shared->warnings())
+                {
+                    WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
+                }
+            }
+            geometry = shared;
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Body '" << name << "', keyword 'file' in " << d.name()
+                << ":" << nl << "    " << err.what() << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    rigidBody b
+    (
+        name, geometry, immersedDEMChecks::positive(d, "density"),
+        materialIndex(d, materials, name)
+    );
+
+    const vector axis = d.getOrDefault<vector>("rotationAxis", vector(0, 0, 1));
+    if (mag(axis) == 0)
+    {
+        FatalIOErrorInFunction(d)
+            << "Keyword 'rotationAxis' in " << d.name() << " is a zero vector"
+            << exit(FatalIOError);
+    }
+    const scalar angle = degToRad(d.getOrDefault<scalar>("rotationAngle", 0));
+    // The rotation turns the shape as given in its file about its centroid
+    const quat R = bodyPose::axisAngle(immersedDEMReader::toCore(axis), angle);
+    b.pose = bodyPose
+    (
+        immersedDEMReader::toCore(d.get<vector>("position")),
+        R*geometry->bodyInFile().orientation()
+    );
+    b.velocity = immersedDEMReader::toCore(d.getOrDefault<vector>("velocity", Zero));
+    b.angularVelocity =
+        immersedDEMReader::toCore(d.getOrDefault<vector>("angularVelocity", Zero));
+    b.motion = motionTypeFromName
+    (
+        immersedDEMChecks::oneOfOrDefault(d, "motion", {"free", "fixed", "prescribed"}, "free")
+    );
+    b.lockTranslation = readLocks(d, "lockTranslation");
+    b.lockRotation = readLocks(d, "lockRotation");
+
+    const scalar V = geometry->volume();
+    const vec3 J = b.inertia();
+    Info<< "    body " << name << ": " << shapeType
+        << ", volume " << V << " m3, mass " << b.mass()
+        << " kg, principal moments (" << J.x() << ' ' << J.y() << ' ' << J.z()
+        << ") kg m2" << endl;
+    return b;
+}
+
+
+rigidBody Foam::immersedDEMReaders::readWall
+(
+    const word& name,
+    const dictionary& d,
+    const fileName& surfaceDir,
+    const std::vector<contactMaterial>& materials,
+    double thickness,
+    const polyMesh* mesh
+)
+{
+    const word type = immersedDEMChecks::oneOf(d, "type", {"plane", "triSurface", "patch"});
+    std::shared_ptr<const shape> geometry;
+    bodyPose pose;
+    if (type == "plane")
+    {
+        immersedDEMChecks::allowOnly
+        (
+            d, {"type", "point", "normal", "material", "velocity"}
+        );
+        const vector n = d.get<vector>("normal");
+        if (mag(n) == 0)
+        {
+            FatalIOErrorInFunction(d)
+                << "Keyword 'normal' in " << d.name() << " is a zero vector"
+                << exit(FatalIOError);
+        }
+        geometry = std::make_shared<halfSpaceShape>();
+        pose = halfSpaceShape::poseOf
+        (
+            immersedDEMReader::toCore(d.get<vector>("point")), immersedDEMReader::toCore(n)
+        );
+    }
+    else if (type == "patch")
+    {
+        immersedDEMChecks::allowOnly(d, {"type", "patches", "material"});
+        if (!mesh)
+        {
+            FatalIOErrorInFunction(d)
+                << "Wall '" << name << "' in " << d.name() << " is of type patch,"
+                << " which needs the CFD mesh: use it with the immersedDEM"
+                << " function object, or type plane or triSurface here" << nl
+                << exit(FatalIOError);
+        }
+        try
+        {
+            geometry = std::make_shared<wallMeshShape>
+            (
+                immersedDEMPatchSurface::of(*mesh, d, name), name, thickness
+            );
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Wall '" << name << "', keyword 'patches' in " << d.name()
+                << ":" << nl << "    " << err.what() << nl
+                << exit(FatalIOError);
+        }
+    }
+    else
+    {
+        immersedDEMChecks::allowOnly
+        (
+            d, {"type", "file", "scale", "flipNormals", "material", "velocity"}
+        );
+        const fileName file = surfaceDir/d.get<fileName>("file");
+        try
+        {
+            triangleSoup s = surfaceFileIO::read(file);
+            const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+            for (vec3& p : s.points) p *= scale;
+            if (d.getOrDefault<bool>("flipNormals", false))
+            {
+                for (immersedDEM::triFace& f : s.faces) std::swap(f[1], f[2]);
+            }
+            geometry = std::make_shared<wallMeshShape>(std::move(s), file, thickness);
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(d)
+                << "Wall '" << name << "', keyword 'file' in " << d.name()
+                << ":" << nl << "    " << err.what() << nl
+                << exit(FatalIOError);
+        }
+    }
+    rigidBody w(name, geometry, 1, materialIndex(d, materials, name));
+    w.pose = pose;
+    w.velocity = immersedDEMReader::toCore(d.getOrDefault<vector>("velocity", Zero));
+    w.motion = w.velocity.norm() > 0 ? motionType::prescribed : motionType::fixed;
+    Info<< "    wall " << name << ": " << type << endl;
+    return w;
+}
