@@ -432,7 +432,7 @@ runResult runSpherePour(bool sweep, std::shared_ptr<demCommunicator> comm)
 
 TEST(demProcesses, sphereSweepIsTheGeneralLoopBitForBit)
 {
-    // The general loop (pair filter, engine, applyContacts) against the
+    // The general loop (pair filter, engine, pairContacts::apply) against the
     // sphere sweep, alone and with the pairs shared by 2 processes: the
     // same states, contact records and histories, bit for bit
     const runResult general = runSpherePour(false, nullptr);

@@ -642,7 +642,7 @@ TEST(lubrication, rockingFacesLoseTheirTiltingWithoutReversingIt)
     // normal at the film's pressure centre, off the closest points. The
     // normal damper there and the tilt damper both take out the rocking:
     // it decays without reversing, and the kinetic energy never grows
-    // (the dampers limited together, demSolver::applyFilm), at the DEM's
+    // (the dampers limited together, lubricationFilms::applyFilm), at the DEM's
     // own step and at a tenth of it
     const double theta = 0.0075;
     for (const double fraction : {1.0, 0.1})

@@ -95,6 +95,7 @@ void broadPhase::refresh
             listBox_[i] = box[i].inflated(skin);
         }
         neighbours_ = gridPairs(listBox_, others);
+        ++builds_;
         ++work.broadPhaseBuilds;
     }
 }

@@ -109,7 +109,7 @@ void sphereSweep::candidates
             W.state.position != sphereWallNearPose_[2*k]
          || W.planeNormal != sphereWallNearPose_[2*k + 1];
     }
-    if (wallsMoved || sphereWallNearBuild_ != work.broadPhaseBuilds)
+    if (wallsMoved || sphereWallNearBuild_ != broad.builds())
     {
         sphereWallNear_.clear();
         sphereWallNearPose_.clear();
@@ -134,7 +134,7 @@ void sphereSweep::candidates
                 }
             }
         }
-        sphereWallNearBuild_ = work.broadPhaseBuilds;
+        sphereWallNearBuild_ = broad.builds();
     }
     // (each pair written, kept by advancing the count: whether a listed
     // pair touches is a coin toss the branch predictor lost, the largest
@@ -160,7 +160,7 @@ void sphereSweep::candidates
     // G are R_a + R_b or farther apart cannot touch meanwhile. The grown
     // boxes hold about twice the pairs of this criterion (their tests were
     // the largest cost of this function)
-    if (sphereNeighboursBuild_ != work.broadPhaseBuilds)
+    if (sphereNeighboursBuild_ != broad.builds())
     {
         sphereNeighbours_.clear();
         for (const auto& p : broad.neighbours())
@@ -180,7 +180,7 @@ void sphereSweep::candidates
                 sphereNeighbours_.push_back(p);
             }
         }
-        sphereNeighboursBuild_ = work.broadPhaseBuilds;
+        sphereNeighboursBuild_ = broad.builds();
     }
     sphereBodyPairs_.resize(sphereNeighbours_.size());
     size_t nBody = 0;
@@ -234,11 +234,7 @@ void sphereSweep::sweep
     sphereDamping_.assign(nMaterials*nMaterials, -1);
     for (const auto& p : spherePairs_)
     {
-        if
-        (
-            comm
-         && demCommunicator::owner(identity[p.first], identity[p.second], comm->size()) != comm->rank()
-        )
+        if (!demCommunicator::owns(comm, identity[p.first], identity[p.second]))
         {
             continue;
         }

@@ -155,7 +155,7 @@ void Foam::functionObjects::immersedDEM::checkRun(const scalar deltaT)
         {
             s = max(s, scalar(bodies[i].velocity.norm()));
         }
-        const scalar g = state_.settings().gravity.norm();
+        const scalar g = state_.settingsRead().gravity.norm();
         s = max(s, sqrt(2*g*mag(mesh_.bounds().span())));
         referenceSpeed_ = s;
     }
@@ -277,7 +277,7 @@ void Foam::functionObjects::immersedDEM::setViscosity()
 {
     // The lubrication below the resolved gap needs the fluid's dynamic
     // viscosity: rhoInf times the solver's laminar nu
-    if (!state_.settings().lubrication.active)
+    if (!state_.settingsRead().lubrication.active)
     {
         state_.dem().setFluidViscosity(0);
         return;

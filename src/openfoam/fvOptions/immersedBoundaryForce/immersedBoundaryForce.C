@@ -60,7 +60,7 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     // bodies), the wall faces' pressure's when it is off
     forcing.sealedWalls = dict.getOrDefault<bool>
     (
-        "sealedWalls", state_.settings().lubrication.active
+        "sealedWalls", state_.settingsRead().lubrication.active
     );
 
     const word surface
