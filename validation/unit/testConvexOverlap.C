@@ -354,8 +354,9 @@ TEST(convexOverlap, areaVectorAndMomentAreTheVolumeGradient)
 
 TEST(convexOverlap, nonConvexPairsStayOnTheOctree)
 {
+    // An L prism not decomposed into convex pieces (maxConvexPieces 0)
     const std::vector<Eigen::Vector2d> L{{0, 0}, {0.004, 0}, {0.004, 0.001}, {0.001, 0.001}, {0.001, 0.003}, {0, 0.003}};
-    const triangleMeshShape l(primitiveMeshes::extrudedPolygon(L, 0.002), "L");
+    const triangleMeshShape l(primitiveMeshes::extrudedPolygon(L, 0.002), "L", true, 0);
     const triangleMeshShape cube(primitiveMeshes::box(vec3::Constant(0.002)), "cube");
     const bodyPose pA = l.poseFromFilePlacement(quat::Identity(), vec3::Zero());
     const bodyPose pB = cube.poseFromFilePlacement(quat::Identity(), vec3(0.0035, 0.0005, 0.001));

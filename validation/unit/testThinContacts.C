@@ -149,7 +149,8 @@ TEST(thinContacts, piecesCloserThanABaseCellAreOneContact)
             {0, 0}, {2*w + gap, 0}, {2*w + gap, 0.008}, {w + gap, 0.008}, {w + gap, 0.003},
             {w, 0.003}, {w, 0.008}, {0, 0.008}
         };
-        const triangleMeshShape u(primitiveMeshes::extrudedPolygon(U, 0.004), "U");
+        // (not decomposed into convex pieces: the octree's rule is tested)
+        const triangleMeshShape u(primitiveMeshes::extrudedPolygon(U, 0.004), "U", true, 0);
         const bodyPose pU = u.poseFromFilePlacement(quat::Identity(), vec3(0.00011, 0.00007, 0.00013));
         const bodyPose pS = slab.poseFromFilePlacement
         (

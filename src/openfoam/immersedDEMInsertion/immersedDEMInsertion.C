@@ -1,5 +1,6 @@
 #include "immersedDEMInsertion.H"
 #include "immersedDEMReader.H"
+#include "immersedDEMDictionaryReaders.H"
 #include "dictionaryChecks.H"
 #include "sphereShape.H"
 #include "triangleMeshShape.H"
@@ -146,7 +147,7 @@ bodyTemplate readTemplate
     }
     else
     {
-        allowed.append(wordList{"file", "scale", "checkSelfIntersection"});
+        allowed.append(wordList{"file", "scale", "checkSelfIntersection", "maxConvexPieces"});
         immersedDEMChecks::allowOnly(d, allowed);
         const fileName file = surfaceDir/d.get<fileName>("file");
         const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
@@ -154,12 +155,15 @@ bodyTemplate readTemplate
         {
             auto s = triangleMeshShape::fromFile
             (
-                file, scale, d.getOrDefault<bool>("checkSelfIntersection", true)
+                file, scale, d.getOrDefault<bool>("checkSelfIntersection", true),
+                immersedDEMReaders::readMaxConvexPieces(d)
             );
             for (const std::string& w : s->warnings())
             {
                 WarningInFunction << "Template " << name << ": " << w.c_str() << endl;
             }
+            Info<< "    template " << name << " contacts: "
+                << immersedDEMReaders::contactPathOf(*s).c_str() << endl;
             t.geometry = std::move(s);
         }
         catch (const coreError& err)
@@ -246,9 +250,10 @@ insertionRegion readRegionDict(const dictionary& d, const fileName& surfaceDir)
         const fileName file = surfaceDir/d.get<fileName>("file");
         try
         {
+            // (a region: inside tests only, no convex pieces)
             std::shared_ptr<const shape> s = triangleMeshShape::fromFile
             (
-                file, immersedDEMChecks::positiveOrDefault(d, "scale", 1), true
+                file, immersedDEMChecks::positiveOrDefault(d, "scale", 1), true, 0
             );
             return insertionRegion::surface(s);
         }

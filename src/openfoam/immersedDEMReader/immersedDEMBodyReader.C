@@ -45,6 +45,37 @@ Eigen::Vector3i Foam::immersedDEMReaders::readLocks(const dictionary& d, const w
 
 
 
+int Foam::immersedDEMReaders::readMaxConvexPieces(const dictionary& d)
+{
+    const scalar n = immersedDEMChecks::inRangeOrDefault
+    (
+        d, "maxConvexPieces", 0, 1000, convexDecomposition::defaultMaxPieces
+    );
+    if (n != std::floor(n))
+    {
+        FatalIOErrorInFunction(d)
+            << "Keyword 'maxConvexPieces' in " << d.name() << " is " << n
+            << "; it must be a whole number (0: keep the octree virtual mesh)"
+            << exit(FatalIOError);
+    }
+    return int(n);
+}
+
+
+std::string Foam::immersedDEMReaders::contactPathOf(const triangleMeshShape& s)
+{
+    if (s.convex())
+    {
+        return "convex: exact intersection";
+    }
+    if (!s.pieces().empty())
+    {
+        return s.piecesNote() + ": exact intersection of the pieces";
+    }
+    return s.piecesNote() + "; octree virtual mesh (set maxConvexPieces to change)";
+}
+
+
 rigidBody Foam::immersedDEMReaders::readBody
 (
     const word& name,
@@ -70,18 +101,19 @@ rigidBody Foam::immersedDEMReaders::readBody
     }
     else
     {
-        allowed.append(wordList{"file", "scale", "checkSelfIntersection"});
+        allowed.append(wordList{"file", "scale", "checkSelfIntersection", "maxConvexPieces"});
         immersedDEMChecks::allowOnly(d, allowed);
         const fileName file = surfaceDir/d.get<fileName>("file");
         const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
         const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
+        const int maxPieces = readMaxConvexPieces(d);
         std::shared_ptr<const triangleMeshShape>& shared =
-            surfaces[std::make_tuple(std::string(file), double(scale), selfCheck)];
+            surfaces[std::make_tuple(std::string(file), double(scale), selfCheck, maxPieces)];
         try
         {
             if (!shared)
             {
-                shared = triangleMeshShape::fromFile(file, scale, selfCheck);
+                shared = triangleMeshShape::fromFile(file, scale, selfCheck, maxPieces);
                 for (const std::string& w : shared->warnings())
                 {
                     WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
@@ -135,6 +167,10 @@ rigidBody Foam::immersedDEMReaders::readBody
         << ", volume " << V << " m3, mass " << b.mass()
         << " kg, principal moments (" << J.x() << ' ' << J.y() << ' ' << J.z()
         << ") kg m2" << endl;
+    if (const auto* m = shapeAs<triangleMeshShape>(*geometry))
+    {
+        Info<< "        contacts: " << contactPathOf(*m).c_str() << endl;
+    }
     return b;
 }
 

@@ -78,6 +78,76 @@ double sphereGap(const vec3& c, double r, const shape& S, const bodyPose& pS)
     return d - r;
 }
 
+// A convex mesh, or one made of convex pieces
+bool hasParts(const triangleMeshShape& m)
+{
+    return m.convex() || !m.pieces().empty();
+}
+
+
+// The least distance between the convex parts of two meshes (their
+// pieces, or the mesh itself when convex), 0 when some touch; parts
+// whose balls are farther apart than the least distance found (or cap)
+// are skipped, and the search stops below stopBelow
+double piecesGap
+(
+    const triangleMeshShape& A, const bodyPose& pA,
+    const triangleMeshShape& B, const bodyPose& pB,
+    double stopBelow, double cap
+)
+{
+    struct part
+    {
+        const std::vector<vec3>* corners;
+        bodyPose pose;
+        double radius;
+    };
+    // The parts of M whose balls come nearer than cap to the other body's
+    auto partsOf = [cap](const triangleMeshShape& M, const bodyPose& p, const vec3& c, double r)
+    {
+        std::vector<part> out;
+        if (M.convex())
+        {
+            out.push_back({&M.convex()->vertices(), p, M.boundingRadius()});
+            return out;
+        }
+        for (const auto& q : M.pieces())
+        {
+            const bodyPose pq = p*q->bodyInFile();
+            if ((pq.position() - c).norm() - q->boundingRadius() - r < cap)
+            {
+                out.push_back({&q->convex()->vertices(), pq, q->boundingRadius()});
+            }
+        }
+        return out;
+    };
+    const std::vector<part> a = partsOf(A, pA, pB.position(), B.boundingRadius());
+    const std::vector<part> b = partsOf(B, pB, pA.position(), A.boundingRadius());
+    double best = cap;
+    for (const part& x : a)
+    {
+        for (const part& y : b)
+        {
+            if ((x.pose.position() - y.pose.position()).norm() - x.radius - y.radius >= best)
+            {
+                continue;
+            }
+            const mat3 RxT = x.pose.rotation().transpose();
+            const convexClosest c = convexDistance
+            (
+                *x.corners, *y.corners,
+                RxT*y.pose.rotation(), RxT*(y.pose.position() - x.pose.position())
+            );
+            best = std::min(best, c.intersecting ? 0.0 : c.distance);
+            if (best < stopBelow)
+            {
+                return best;
+            }
+        }
+    }
+    return best;
+}
+
 } // End anonymous namespace
 
 
@@ -173,6 +243,13 @@ double pairFilter::gapLowerBound
         const convexClosest c =
             convexDistance(mA->convex()->vertices(), mB->convex()->vertices(), R, t);
         return c.intersecting ? 0.0 : c.distance - 1e-9*std::min(RA, RB);
+    }
+    // Bodies of convex pieces (and convex ones): the least distance of
+    // their pieces, exact, no surface inside another to hide
+    if (mA && mB && hasParts(*mA) && hasParts(*mB) && (!mA->convex() || !mB->convex()))
+    {
+        const double g = piecesGap(*mA, pA, *mB, pB, stopBelow, cap);
+        return g > 0 ? g - 1e-9*std::min(RA, RB) : g;
     }
     const double g = triangleBVH::separation(*tA, *tB, R, t, cap, stopBelow);
     if (!(g > 0))

@@ -194,6 +194,72 @@ triangleSoup primitiveMeshes::extrudedPolygon
 }
 
 
+triangleSoup primitiveMeshes::hollowCylinder(double R, double r, double h, int n)
+{
+    if (!(R > r && r > 0 && h > 0 && n >= 3))
+    {
+        throw coreError("hollowCylinder: needs R > r > 0, h > 0 and n >= 3");
+    }
+    // Points 4i..4i+3: outer bottom, outer top, inner bottom, inner top
+    triangleSoup s;
+    for (int i = 0; i < n; ++i)
+    {
+        const double t = 2*M_PI*i/n, c = std::cos(t), z = std::sin(t);
+        s.points.emplace_back(R*c, R*z, -h/2);
+        s.points.emplace_back(R*c, R*z, h/2);
+        s.points.emplace_back(r*c, r*z, -h/2);
+        s.points.emplace_back(r*c, r*z, h/2);
+    }
+    for (int i = 0; i < n; ++i)
+    {
+        const int a = 4*i, b = 4*((i + 1) % n);
+        s.faces.push_back({a, b, b + 1});               // outer side
+        s.faces.push_back({a, b + 1, a + 1});
+        s.faces.push_back({a + 2, a + 3, b + 3});       // inner side
+        s.faces.push_back({a + 2, b + 3, b + 2});
+        s.faces.push_back({a + 1, b + 1, b + 3});       // top
+        s.faces.push_back({a + 1, b + 3, a + 3});
+        s.faces.push_back({a, a + 2, b + 2});           // bottom
+        s.faces.push_back({a, b + 2, b});
+    }
+    return s;
+}
+
+
+triangleSoup primitiveMeshes::lobed(int lobes, double c, double rl, double h, int n)
+{
+    if (!(lobes >= 2 && c > 0 && rl > c*std::sin(M_PI/lobes) && h > 0 && n >= 3*lobes))
+    {
+        throw coreError
+        (
+            "lobed: needs lobes >= 2, overlapping lobes (rl > c sin(pi/lobes)),"
+            " h > 0 and n >= 3 lobes"
+        );
+    }
+    // The outline: along each direction, the farthest point of the union
+    // of the lobe circles (star-shaped about the axis)
+    std::vector<Eigen::Vector2d> outline;
+    for (int i = 0; i < n; ++i)
+    {
+        const double t = 2*M_PI*i/n;
+        const Eigen::Vector2d u(std::cos(t), std::sin(t));
+        double far = 0;
+        for (int k = 0; k < lobes; ++k)
+        {
+            const double tk = 2*M_PI*k/lobes;
+            const Eigen::Vector2d o = c*Eigen::Vector2d(std::cos(tk), std::sin(tk));
+            // |s u - o| = rl, the larger root
+            const double b = u.dot(o), disc = b*b - o.squaredNorm() + rl*rl;
+            if (disc >= 0) far = std::max(far, b + std::sqrt(disc));
+        }
+        outline.push_back(far*u);
+    }
+    triangleSoup s = extrudedPolygon(outline, h);
+    transform(s, mat3::Identity(), vec3(0, 0, -h/2));
+    return s;
+}
+
+
 void primitiveMeshes::transform(triangleSoup& soup, const mat3& R, const vec3& t)
 {
     for (vec3& p : soup.points) p = R*p + t;

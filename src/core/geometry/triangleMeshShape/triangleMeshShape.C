@@ -62,7 +62,8 @@ triangleMeshShape::triangleMeshShape
 (
     triangleSoup soup,
     const std::string& name,
-    bool checkSelfIntersection
+    bool checkSelfIntersection,
+    int maxConvexPieces
 )
 :
     shape(staticKind),
@@ -73,7 +74,7 @@ triangleMeshShape::triangleMeshShape
 
     // Body frame: principal axes at the centroid
     bodyInFile_ = bodyPose(fileMassProperties_.centroid, quat(fileMassProperties_.principalAxes));
-    body_ = std::move(soup);
+    body_ = soup;
     for (vec3& p : body_.points)
     {
         p = bodyInFile_.toBody(p);
@@ -85,6 +86,89 @@ triangleMeshShape::triangleMeshShape
     search_.reset(new search(body_));
     distance_.reset(new surfaceDistance(body_));
     convex_ = convexPolyhedron::of(body_);
+    if (convex_)
+    {
+        piecesNote_ = "convex";
+    }
+    else if (maxConvexPieces > 0)
+    {
+        // In the file's frame, where a pellet's faces usually lie along
+        // the axes and the cuts through its reflex edges are fewest (a
+        // ring: 26 pieces, against more than 64 in its principal frame);
+        // then in the body frame
+        convexDecomposition d = convexDecomposition::of(soup, maxConvexPieces);
+        if (!d.empty())
+        {
+            for (triangleSoup& p : d.pieces)
+            {
+                for (vec3& x : p.points) x = bodyInFile_.toBody(x);
+            }
+        }
+        else
+        {
+            d = convexDecomposition::of(body_, maxConvexPieces);
+        }
+        setPieces(std::move(d));
+    }
+    else
+    {
+        piecesNote_ = "not convex, not decomposed";
+    }
+}
+
+
+void triangleMeshShape::setPieces(convexDecomposition d)
+{
+    if (d.empty())
+    {
+        piecesNote_ = "not convex, not decomposed: " + d.why;
+        return;
+    }
+    for (size_t i = 0; i < d.pieces.size(); ++i)
+    {
+        pieces_.push_back
+        (
+            std::make_unique<triangleMeshShape>
+            (
+                std::move(d.pieces[i]), name_ + " piece " + std::to_string(i), false, 0
+            )
+        );
+    }
+    pieceNeighbours_ = std::move(d.neighbours);
+    piecesNote_ = std::to_string(pieces_.size()) + " convex pieces";
+}
+
+
+std::unique_ptr<triangleMeshShape> triangleMeshShape::scaled
+(
+    double f, const std::string& name
+) const
+{
+    triangleSoup s = body_;
+    for (vec3& p : s.points) p *= f;
+    auto out = std::make_unique<triangleMeshShape>(std::move(s), name, false, 0);
+    if (!pieces_.empty())
+    {
+        // The pieces in this body's frame, scaled, then in the new body's
+        // frame (the same up to round-off)
+        convexDecomposition d;
+        for (const auto& q : pieces_)
+        {
+            triangleSoup p = q->surface();
+            for (vec3& x : p.points)
+            {
+                x = out->bodyInFile().toBody(f*q->bodyInFile().toWorld(x));
+            }
+            d.pieces.push_back(std::move(p));
+        }
+        d.neighbours = pieceNeighbours_;
+        out->setPieces(std::move(d));
+    }
+    else if (!convex_)
+    {
+        out->piecesNote_ = piecesNote_;
+    }
+    return out;
 }
 
 
@@ -95,7 +179,8 @@ std::unique_ptr<triangleMeshShape> triangleMeshShape::fromFile
 (
     const std::string& fileName,
     double scale,
-    bool checkSelfIntersection
+    bool checkSelfIntersection,
+    int maxConvexPieces
 )
 {
     if (!(std::isfinite(scale) && scale > 0))
@@ -107,7 +192,10 @@ std::unique_ptr<triangleMeshShape> triangleMeshShape::fromFile
     {
         for (vec3& p : soup.points) p *= scale;
     }
-    return std::make_unique<triangleMeshShape>(std::move(soup), fileName, checkSelfIntersection);
+    return std::make_unique<triangleMeshShape>
+    (
+        std::move(soup), fileName, checkSelfIntersection, maxConvexPieces
+    );
 }
 
 

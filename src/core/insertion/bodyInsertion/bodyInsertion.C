@@ -27,10 +27,15 @@ std::shared_ptr<const shape> bodyTemplate::shapeAt(double f) const
     {
         s = std::make_shared<sphereShape>(f*sp->radius());
     }
-    else
+    else if (const auto* m = dynamic_cast<const triangleMeshShape*>(geometry.get()))
     {
         // The checked surface at factor 1, in its body frame, scaled: its
-        // body frame is that of the template's shape (up to round-off)
+        // body frame is that of the template's shape (up to round-off),
+        // its convex pieces too
+        s = m->scaled(f, name);
+    }
+    else
+    {
         triangleSoup soup = geometry->surface();
         for (vec3& p : soup.points) p *= f;
         s = std::make_shared<triangleMeshShape>(std::move(soup), name, false);

@@ -74,6 +74,24 @@ struct workspace
 };
 
 
+//- Where the edge between points a and b (heights da and db over the
+//  plane, of opposite signs) crosses the plane, computed from the
+//  lexicographically smaller end: the two faces sharing the edge get the
+//  same point to the last bit. (From either end, the two copies differ
+//  by round-off; the cap's hull then met near-duplicates whose turns have
+//  random signs, and lost its convexity: a ring's thin pieces gave
+//  overlaps 9% off.)
+inline vec3 crossing(const vec3& a, double da, const vec3& b, double db)
+{
+    const bool aFirst =
+        a.x() < b.x()
+     || (a.x() == b.x() && (a.y() < b.y() || (a.y() == b.y() && a.z() <= b.z())));
+    return aFirst
+        ? vec3(a + (da/(da - db))*(b - a))
+        : vec3(b + (db/(db - da))*(a - b));
+}
+
+
 //- Clip the polyhedron by the plane; false when nothing of it is left
 //  strictly behind the plane (no volume)
 bool clip
@@ -117,7 +135,7 @@ bool clip
                 if (da >= -eps) w.cap.push_back(cur.points[a]);
                 if (!bIn && da < -eps)
                 {
-                    const vec3 x = cur.points[a] + (da/(da - db))*(cur.points[b] - cur.points[a]);
+                    const vec3 x = crossing(cur.points[a], da, cur.points[b], db);
                     nxt.points.push_back(x);
                     nxt.rim.push_back(cut);
                     w.cap.push_back(x);
@@ -125,7 +143,7 @@ bool clip
             }
             else if (db < -eps)
             {
-                const vec3 x = cur.points[a] + (da/(da - db))*(cur.points[b] - cur.points[a]);
+                const vec3 x = crossing(cur.points[a], da, cur.points[b], db);
                 nxt.points.push_back(x);
                 nxt.rim.push_back(flag);
                 w.cap.push_back(x);
@@ -369,6 +387,7 @@ contactGeometry convexOverlap::evaluate
     contactRegion r;
     r.volume = volume;
     r.point = X.centroid + o;
+    for (const vec3& x : w.current.points) r.box.add(x + o);
     const vec3 centreLine = pB.position() - pA.position();
     const vec3& S = X.S;
     if (S.norm() > 1e-9*X.absArea)

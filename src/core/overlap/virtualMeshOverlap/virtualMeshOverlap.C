@@ -2,6 +2,7 @@
 #include "octreeWalk.H"
 #include "convexOverlap.H"
 #include "convexPolyhedron.H"
+#include "pieceOverlap.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
 #include "overlapTools.H"
@@ -126,6 +127,13 @@ contactGeometry virtualMeshOverlap::evaluate
         {
             return g;
         }
+    }
+
+    // Bodies made of convex pieces: the sum of their pieces' exact
+    // overlaps, each pair of pieces measured here (the convex routes below)
+    if (settings.convexExact && pieceOverlap::handles(A, B))
+    {
+        return pieceOverlap::evaluate(*this, A, pA, B, pB, settings);
     }
 
     // Convex pairs: the exact intersection, cheaper than any octree

@@ -1,0 +1,279 @@
+#include "convexDecomposition.H"
+#include "axisAlignedBox.H"
+#include "convexPolyhedron.H"
+#include "floatingPointGuard.H"
+#include "massProperties.H"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/convex_decomposition_3.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+
+#include <cmath>
+#include <map>
+
+namespace immersedDEM
+{
+
+namespace
+{
+
+using exactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using exactMesh = CGAL::Surface_mesh<exactKernel::Point_3>;
+using exactPolyhedron = CGAL::Polyhedron_3<exactKernel>;
+using nef = CGAL::Nef_polyhedron_3<exactKernel>;
+
+
+// A triangulated exact mesh rounded to doubles: points closer than weld
+// (rounding made them one, or a cut passed within round-off of a corner)
+// are one point, and triangles that lose a corner so are dropped
+triangleSoup rounded(exactMesh& m, double weld)
+{
+    CGAL::Polygon_mesh_processing::triangulate_faces(m);
+    triangleSoup s;
+    std::map<exactMesh::Vertex_index, int> index;
+    for (const auto v : m.vertices())
+    {
+        const auto& p = m.point(v);
+        const vec3 x(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+        int same = -1;
+        for (size_t i = 0; i < s.points.size() && same < 0; ++i)
+        {
+            if ((s.points[i] - x).norm() <= weld) same = int(i);
+        }
+        index[v] = same >= 0 ? same : int(s.points.size());
+        if (same < 0) s.points.push_back(x);
+    }
+    for (const auto f : m.faces())
+    {
+        triFace t;
+        int k = 0;
+        for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+        {
+            if (k < 3) t[k] = index[v];
+            ++k;
+        }
+        if (k == 3 && t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+        {
+            s.faces.push_back(t);
+        }
+    }
+    return s;
+}
+
+
+// Pieces sharing part of a face: coplanar faces of opposite normals whose
+// boxes meet
+std::vector<std::vector<int>> neighboursOf
+(
+    const std::vector<std::unique_ptr<convexPolyhedron>>& P, double tol
+)
+{
+    const size_t n = P.size();
+    std::vector<axisAlignedBox> box(n);
+    std::vector<std::vector<axisAlignedBox>> faceBox(n);
+    for (size_t i = 0; i < n; ++i)
+    {
+        for (const vec3& v : P[i]->vertices()) box[i].add(v);
+        for (const convexPolyhedron::face& f : P[i]->faces())
+        {
+            axisAlignedBox b;
+            for (const int c : f.corners) b.add(P[i]->vertices()[c]);
+            faceBox[i].push_back(b.inflated(tol));
+        }
+    }
+    std::vector<std::vector<int>> nb(n);
+    for (size_t i = 0; i < n; ++i)
+    {
+        for (size_t j = i + 1; j < n; ++j)
+        {
+            if (!box[i].inflated(tol).overlaps(box[j])) continue;
+            bool shared = false;
+            const auto& Fi = P[i]->faces();
+            const auto& Fj = P[j]->faces();
+            for (size_t a = 0; a < Fi.size() && !shared; ++a)
+            {
+                for (size_t b = 0; b < Fj.size() && !shared; ++b)
+                {
+                    shared =
+                        Fi[a].normal.dot(Fj[b].normal) < -(1 - 1e-9)
+                     && std::abs(Fi[a].offset + Fj[b].offset) < tol
+                     && faceBox[i][a].overlaps(faceBox[j][b]);
+                }
+            }
+            if (shared)
+            {
+                nb[i].push_back(int(j));
+                nb[j].push_back(int(i));
+            }
+        }
+    }
+    return nb;
+}
+
+
+// The pieces checked convex and adding up to the body's volume; their
+// neighbours
+void finish(convexDecomposition& d, double volume, double radius)
+{
+    std::vector<std::unique_ptr<convexPolyhedron>> P;
+    double sum = 0;
+    for (size_t i = 0; i < d.pieces.size(); ++i)
+    {
+        P.push_back(convexPolyhedron::of(d.pieces[i]));
+        if (!P.back())
+        {
+            d.why = "piece " + std::to_string(i) + " is not convex";
+            break;
+        }
+        sum += massProperties::of(d.pieces[i]).volume;
+    }
+    if (d.why.empty() && !(std::abs(sum - volume) <= 1e-9*std::abs(volume)))
+    {
+        d.why =
+            "the pieces' volumes add up to " + std::to_string(sum)
+          + ", not the body's " + std::to_string(volume);
+    }
+    if (!d.why.empty())
+    {
+        d.pieces.clear();
+        d.neighbours.clear();
+        return;
+    }
+    d.neighbours = neighboursOf(P, convexPolyhedron::relativeTolerance*radius);
+}
+
+
+double radiusOf(const triangleSoup& s)
+{
+    double r = 0;
+    for (const vec3& p : s.points) r = std::max(r, p.norm());
+    return r;
+}
+
+} // End anonymous namespace
+
+
+int convexDecomposition::countReflexEdges(const triangleSoup& s)
+{
+    // Each directed edge (i, j) of a face, and the face's third corner
+    std::map<std::pair<int, int>, int> third;
+    for (const triFace& f : s.faces)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            third[{f[k], f[(k + 1) % 3]}] = f[(k + 2) % 3];
+        }
+    }
+    int reflex = 0;
+    for (const triFace& f : s.faces)
+    {
+        const vec3& a = s.points[f[0]];
+        const vec3 n = (s.points[f[1]] - a).cross(s.points[f[2]] - a).normalized();
+        for (int k = 0; k < 3; ++k)
+        {
+            const int i = f[k], j = f[(k + 1) % 3];
+            if (i > j) continue;    // each edge once
+            const auto it = third.find({j, i});
+            if (it == third.end()) continue;
+            // The neighbour's third corner in front of this face's plane:
+            // the edge folds inwards
+            const vec3 c = s.points[it->second] - s.points[i];
+            if (n.dot(c) > 1e-9*c.norm()) ++reflex;
+        }
+    }
+    return reflex;
+}
+
+
+convexDecomposition convexDecomposition::of(const triangleSoup& surface, int maxPieces)
+{
+    convexDecomposition d;
+    d.reflexEdges = countReflexEdges(surface);
+    if (d.reflexEdges == 0)
+    {
+        d.why = "the surface is convex";
+        return d;
+    }
+    if (d.reflexEdges > 2*maxPieces)
+    {
+        d.why =
+            std::to_string(d.reflexEdges) + " reflex edges, more than twice the "
+            + std::to_string(maxPieces) + " pieces allowed (a curved non-convex surface)";
+        return d;
+    }
+
+    // The points snapped to a grid of 2^-45 (3e-14) of the surface's
+    // radius: coordinates that are zero but for round-off (cos(pi/2))
+    // become zero, and the exact cuts do not leave slivers of that size
+    const double radius = radiusOf(surface);
+    const double grid = std::ldexp(1.0, std::ilogb(radius) - 45);
+    const floatingPointGuard noTraps;
+    try
+    {
+        exactMesh m;
+        std::vector<exactMesh::Vertex_index> v;
+        for (const vec3& p : surface.points)
+        {
+            const vec3 q = (p/grid).array().round()*grid;
+            v.push_back(m.add_vertex(exactKernel::Point_3(q.x(), q.y(), q.z())));
+        }
+        for (const triFace& f : surface.faces)
+        {
+            if (m.add_face(v[f[0]], v[f[1]], v[f[2]]) == exactMesh::null_face())
+            {
+                d.why = "the surface is not a closed manifold for CGAL";
+                return d;
+            }
+        }
+        nef N(m);
+        if (!N.is_simple())
+        {
+            d.why = "the surface is not a simple solid for CGAL";
+            return d;
+        }
+        CGAL::convex_decomposition_3(N);
+
+        // The first volume is the outer space; marked volumes are pieces
+        auto c = N.volumes_begin();
+        for (++c; c != N.volumes_end(); ++c)
+        {
+            if (!c->mark()) continue;
+            if (int(d.pieces.size()) >= maxPieces)
+            {
+                d.pieces.clear();
+                d.why = "more than " + std::to_string(maxPieces) + " convex pieces";
+                return d;
+            }
+            exactPolyhedron P;
+            N.convert_inner_shell_to_polyhedron(c->shells_begin(), P);
+            exactMesh pm;
+            CGAL::copy_face_graph(P, pm);
+            triangleSoup piece = rounded(pm, 1e-12*radius);
+            if (piece.faces.size() >= 4)
+            {
+                d.pieces.push_back(std::move(piece));
+            }
+        }
+    }
+    catch (const std::exception& e)
+    {
+        d.pieces.clear();
+        d.why = std::string("CGAL's convex decomposition failed: ") + e.what();
+        return d;
+    }
+    if (d.pieces.empty())
+    {
+        d.why = "CGAL's convex decomposition gave no piece";
+        return d;
+    }
+    finish(d, massProperties::of(surface).volume, radius);
+    return d;
+}
+
+
+} // End namespace immersedDEM
+
