@@ -59,6 +59,7 @@ Usage
                      (default 5e-6)
 \*---------------------------------------------------------------------------*/
 
+#include "benchmarkTools.H"
 #include "demSolver.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
@@ -83,24 +84,13 @@ using namespace immersedDEM;
 namespace
 {
 
-//- CPU seconds of this thread (the machine may be shared: not wall time)
-double cpuSeconds()
-{
-    timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9*t.tv_nsec;
-}
+using benchmark::cpuSeconds;
+using benchmark::randomRotation;
 
 size_t heapInUse()
 {
     malloc_trim(0);
     return mallinfo2().uordblks + mallinfo2().hblkhd;
-}
-
-quat randomRotation(std::mt19937& g)
-{
-    std::normal_distribution<double> n;
-    return quat(n(g), n(g), n(g), n(g)).normalized();
 }
 
 struct result

@@ -31,6 +31,7 @@ Usage
     convexExact off), as before the exact convex path
 \*---------------------------------------------------------------------------*/
 
+#include "benchmarkTools.H"
 #include "demSolver.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
@@ -53,18 +54,8 @@ using namespace immersedDEM;
 namespace
 {
 
-double cpuSeconds()
-{
-    timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9*t.tv_nsec;
-}
-
-quat randomRotation(std::mt19937& g)
-{
-    std::normal_distribution<double> n;
-    return quat(n(g), n(g), n(g), n(g)).normalized();
-}
+using benchmark::cpuSeconds;
+using benchmark::randomRotation;
 
 } // End anonymous namespace
 

@@ -26,6 +26,7 @@ Description
 #include "primitiveMeshes.H"
 #include "triangleMeshShape.H"
 #include "virtualMeshOverlap.H"
+#include "testHelpers.H"
 
 #include <gtest/gtest.h>
 
@@ -39,20 +40,6 @@ namespace
 {
 
 const double mm = 0.001;
-
-quat randomRotation(std::mt19937& rng)
-{
-    std::normal_distribution<double> n(0, 1);
-    return quat(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
-
-
-vec3 randomDirection(std::mt19937& rng)
-{
-    std::normal_distribution<double> n(0, 1);
-    return vec3(n(rng), n(rng), n(rng)).normalized();
-}
-
 
 // The catalyst ring of the issue: 4 x 2 x 4 mm, 24 segments
 triangleMeshShape ring()
@@ -100,7 +87,7 @@ int compareAtRandomPoses
     std::uniform_real_distribution<double> f(fLo, fHi);
     const double reach = A.boundingRadius() + B.boundingRadius();
     // A's file frame placed at (qA, tA); B placed in A's file frame
-    const quat qA = randomRotation(rng);
+    const quat qA = test::randomRotation(rng);
     const vec3 tA(0.1, -0.2, 0.3);
     const bodyPose pA = A.poseFromFilePlacement(qA, tA);
     int touching = 0;
@@ -114,7 +101,7 @@ int compareAtRandomPoses
         }
         else
         {
-            pB = bodyPose(pA.position() + f(rng)*reach*randomDirection(rng), randomRotation(rng));
+            pB = bodyPose(pA.position() + f(rng)*reach*test::randomDirection(rng), test::randomRotation(rng));
         }
         const totals e = sum(exactOverlap().evaluate(A, pA, exactB ? *exactB : B, pB, {}));
         const contactGeometry pg = virtualMeshOverlap().evaluate(A, pA, B, pB, {0.2*mm, 4});
@@ -261,7 +248,7 @@ TEST(pieceOverlap, ringOnAPlaneAgainstExact)
     int touching = 0;
     for (int k = 0; k < 200; ++k)
     {
-        const quat q = randomRotation(rng);
+        const quat q = test::randomRotation(rng);
         const bodyPose p0(vec3::Zero(), q);
         // The ring's lowest point, then lowered by a fraction of a mm
         double low = 1;

@@ -86,9 +86,9 @@ bool hasParts(const triangleMeshShape& m)
 
 
 // The least distance between the convex parts of two meshes (their
-// pieces, or the mesh itself when convex), 0 when some touch; parts
-// whose balls are farther apart than the least distance found (or cap)
-// are skipped, and the search stops below stopBelow
+// pieces, or the mesh itself when convex), 0 when some touch, at most cap;
+// pairs of parts are tried nearest balls first, and the search stops below
+// stopBelow
 double piecesGap
 (
     const triangleMeshShape& A, const bodyPose& pA,
@@ -121,28 +121,54 @@ double piecesGap
         }
         return out;
     };
+    // The convex hulls first (GJK on all points): apart, their distance
+    // bounds the bodies' (a ring beside a ring); meeting (a ring in
+    // another's bore, or interlocked), the pieces
+    {
+        const mat3 RaT = pA.rotation().transpose();
+        const convexClosest h = convexDistance
+        (
+            A.points(), B.points(),
+            RaT*pB.rotation(), RaT*(pB.position() - pA.position())
+        );
+        if (!h.intersecting && h.distance > stopBelow)
+        {
+            return std::min(cap, h.distance);
+        }
+    }
     const std::vector<part> a = partsOf(A, pA, pB.position(), B.boundingRadius());
     const std::vector<part> b = partsOf(B, pB, pA.position(), A.boundingRadius());
-    double best = cap;
-    for (const part& x : a)
+
+    // The pairs of parts by the gap of their balls, nearest first: once a
+    // ball gap reaches the least distance found, no later pair is nearer
+    static thread_local std::vector<std::pair<double, std::pair<int, int>>> order;
+    order.clear();
+    for (size_t i = 0; i < a.size(); ++i)
     {
-        for (const part& y : b)
+        for (size_t j = 0; j < b.size(); ++j)
         {
-            if ((x.pose.position() - y.pose.position()).norm() - x.radius - y.radius >= best)
-            {
-                continue;
-            }
-            const mat3 RxT = x.pose.rotation().transpose();
-            const convexClosest c = convexDistance
-            (
-                *x.corners, *y.corners,
-                RxT*y.pose.rotation(), RxT*(y.pose.position() - x.pose.position())
-            );
-            best = std::min(best, c.intersecting ? 0.0 : c.distance);
-            if (best < stopBelow)
-            {
-                return best;
-            }
+            const double balls =
+                (a[i].pose.position() - b[j].pose.position()).norm() - a[i].radius - b[j].radius;
+            if (balls < cap) order.push_back({balls, {int(i), int(j)}});
+        }
+    }
+    std::sort(order.begin(), order.end());
+    double best = cap;
+    for (const auto& o : order)
+    {
+        if (o.first >= best) break;
+        const part& x = a[o.second.first];
+        const part& y = b[o.second.second];
+        const mat3 RxT = x.pose.rotation().transpose();
+        const convexClosest c = convexDistance
+        (
+            *x.corners, *y.corners,
+            RxT*y.pose.rotation(), RxT*(y.pose.position() - x.pose.position())
+        );
+        best = std::min(best, c.intersecting ? 0.0 : c.distance);
+        if (best < stopBelow)
+        {
+            return best;
         }
     }
     return best;

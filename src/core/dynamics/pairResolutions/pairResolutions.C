@@ -1,5 +1,6 @@
 #include "pairResolutions.H"
 #include "convexOverlap.H"
+#include "pieceOverlap.H"
 #include "triangleMeshShape.H"
 
 #include <algorithm>
@@ -79,12 +80,18 @@ void pairResolutions::update
             const shape& sa = *A.geometry;
             const shape& sb = *B.geometry;
 
+            // Exact paths need no resolution: convex bodies, and bodies
+            // of convex pieces, against each other and walls
             const auto* mb = shapeAs<triangleMeshShape>(sb);
             if (wall)
             {
-                if (mb && mb->convex()) continue;
+                if (mb && (mb->convex() || (base.convexExact && !mb->pieces().empty()))) continue;
             }
-            else if (base.convexExact && convexOverlap::handles(sa, sb))
+            else if
+            (
+                base.convexExact
+             && (convexOverlap::handles(sa, sb) || pieceOverlap::handles(sa, sb))
+            )
             {
                 continue;
             }

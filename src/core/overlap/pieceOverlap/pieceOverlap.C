@@ -1,4 +1,5 @@
 #include "pieceOverlap.H"
+#include "convexDistance.H"
 #include "halfSpaceShape.H"
 #include "overlapTools.H"
 #include "triangleMeshShape.H"
@@ -13,13 +14,55 @@ namespace immersedDEM
 namespace
 {
 
-// One side of the pair: its pieces (or the shape itself), posed
+// One side of the pair: its pieces (or the shape itself), posed, with
+// its world box (empty for a plane or a wall: not boxed) and its oriented
+// box (its box in its own frame: centre, axes, half-extents)
 struct part
 {
     const shape* s;
     bodyPose pose;
     int index;
+    axisAlignedBox box;
+    vec3 centre = vec3::Zero();
+    mat3 axes = mat3::Identity();
+    vec3 half = vec3::Zero();
 };
+
+
+// Whether two oriented boxes are apart: a separating axis among their 15
+// candidates (the faces' normals and the edges' cross products)
+bool orientedApart(const part& x, const part& y)
+{
+    const mat3 R = x.axes.transpose()*y.axes;
+    const vec3 t = x.axes.transpose()*(y.centre - x.centre);
+    mat3 absR = R.cwiseAbs();
+    absR.array() += 1e-12;
+    const vec3& a = x.half;
+    const vec3& b = y.half;
+    for (int i = 0; i < 3; ++i)
+    {
+        if (std::abs(t[i]) > a[i] + b.dot(absR.row(i))) return true;
+        if (std::abs(t.dot(R.col(i))) > b[i] + a.dot(absR.col(i))) return true;
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; ++j)
+        {
+            const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            const double ra = a[i1]*absR(i2, j) + a[i2]*absR(i1, j);
+            const double rb = b[j1]*absR(i, j2) + b[j2]*absR(i, j1);
+            if (std::abs(t[i2]*R(i1, j) - t[i1]*R(i2, j)) > ra + rb) return true;
+        }
+    }
+    return false;
+}
+
+
+bool unbounded(const shape& S)
+{
+    return S.shapeKind() == shape::kind::halfSpace || S.shapeKind() == shape::kind::wallMesh;
+}
 
 
 std::vector<part> partsOf(const shape& S, const bodyPose& p)
@@ -31,12 +74,22 @@ std::vector<part> partsOf(const shape& S, const bodyPose& p)
         const auto& P = m->pieces();
         for (size_t i = 0; i < P.size(); ++i)
         {
-            out.push_back({P[i].get(), p*P[i]->bodyInFile(), int(i)});
+            const bodyPose q = p*P[i]->bodyInFile();
+            out.push_back({P[i].get(), q, int(i), P[i]->worldBox(q)});
         }
     }
     else
     {
-        out.push_back({&S, p, 0});
+        out.push_back({&S, p, 0, unbounded(S) ? axisAlignedBox() : S.worldBox(p)});
+    }
+    for (part& q : out)
+    {
+        if (unbounded(*q.s)) continue;
+        const axisAlignedBox b = q.s->localBox();
+        q.centre = q.pose.toWorld(b.centre());
+        q.axes = q.pose.rotation();
+        // (grown by 1e-9 of the size: touching boxes meet)
+        q.half = 0.5*b.span() + vec3::Constant(1e-9*q.s->boundingRadius());
     }
     return out;
 }
@@ -64,6 +117,23 @@ bool neighbours(const shape& S, int i, int j)
     if (!m || m->pieces().empty()) return false;
     const std::vector<int>& n = m->pieceNeighbours(i);
     return std::find(n.begin(), n.end(), j) != n.end();
+}
+
+
+bool apart(const shape& X, const bodyPose& pX, const shape& Y, const bodyPose& pY)
+{
+    const auto* mx = shapeAs<triangleMeshShape>(X);
+    const auto* my = shapeAs<triangleMeshShape>(Y);
+    if (!mx || !my || !mx->convex() || !my->convex())
+    {
+        return false;
+    }
+    const mat3 RxT = pX.rotation().transpose();
+    return !convexDistance
+    (
+        mx->convex()->vertices(), my->convex()->vertices(),
+        RxT*pY.rotation(), RxT*(pY.position() - pX.position())
+    ).intersecting;
 }
 
 
@@ -102,17 +172,31 @@ contactGeometry pieceOverlap::evaluate
     const overlapSettings& settings
 )
 {
-    // The pieces of each side that can reach the other body
+    // The pieces of each side that can reach the other body: their balls,
+    // and their boxes against its box
     auto near = [](std::vector<part> P, const shape& other, const bodyPose& pOther)
     {
+        const axisAlignedBox otherBox =
+            unbounded(other) ? axisAlignedBox() : other.worldBox(pOther);
+        part whole{&other, pOther, 0, otherBox};
+        if (!unbounded(other))
+        {
+            const axisAlignedBox b = other.localBox();
+            whole.centre = pOther.toWorld(b.centre());
+            whole.axes = pOther.rotation();
+            whole.half = 0.5*b.span() + vec3::Constant(1e-9*other.boundingRadius());
+        }
         std::vector<part> kept;
         for (const part& q : P)
         {
-            if (q.s == nullptr) continue;
-            const bool whole =
-                q.s->shapeKind() == shape::kind::halfSpace
-             || q.s->shapeKind() == shape::kind::wallMesh;
-            if (whole || reaches(q.pose.position(), q.s->boundingRadius(), other, pOther))
+            if
+            (
+                unbounded(*q.s)
+             || (
+                    reaches(q.pose.position(), q.s->boundingRadius(), other, pOther)
+                 && (otherBox.empty() || (q.box.overlaps(otherBox) && !orientedApart(q, whole)))
+                )
+            )
             {
                 kept.push_back(q);
             }
@@ -135,18 +219,22 @@ contactGeometry pieceOverlap::evaluate
     {
         for (const part& y : b)
         {
-            const bool ballX =
-                x.s->shapeKind() != shape::kind::halfSpace
-             && x.s->shapeKind() != shape::kind::wallMesh;
-            const bool ballY =
-                y.s->shapeKind() != shape::kind::halfSpace
-             && y.s->shapeKind() != shape::kind::wallMesh;
             if
             (
-                ballX && ballY
-             && (x.pose.position() - y.pose.position()).norm()
-              > x.s->boundingRadius() + y.s->boundingRadius()
+                !unbounded(*x.s) && !unbounded(*y.s)
+             && (
+                    !x.box.overlaps(y.box)
+                 || (x.pose.position() - y.pose.position()).norm()
+                  > x.s->boundingRadius() + y.s->boundingRadius()
+                 || orientedApart(x, y)
+                )
             )
+            {
+                continue;
+            }
+            // Two convex parts apart (GJK on their corners, a fraction of
+            // a clip's cost): no overlap
+            if (apart(*x.s, x.pose, *y.s, y.pose))
             {
                 continue;
             }
