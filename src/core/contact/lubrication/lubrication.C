@@ -236,6 +236,29 @@ closestApproach lubrication::approach
         a.pointA = pA.toWorld(c.pointA);
         a.pointB = pA.toWorld(c.pointB);
     }
+    else if
+    (
+        mA && mB && madeOfConvexParts(*mA) && madeOfConvexParts(*mB)
+    )
+    {
+        // Bodies of convex pieces: their hulls' or their pieces' closest
+        // points (GJK), exact
+        const convexClosest c = closestParts(*mA, pA, *mB, pB, cap, -1, false);
+        if (c.intersecting)
+        {
+            a.found = true;
+            a.gap = 0;
+            return a;
+        }
+        if (!(c.distance < cap))
+        {
+            return a;
+        }
+        a.found = true;
+        a.gap = c.distance;
+        a.pointA = pA.toWorld(c.pointA);
+        a.pointB = pA.toWorld(c.pointB);
+    }
     else
     {
         const triangleBVH::pairHit hit = triangleBVH::closestPair(*tA, *tB, R, t, cap);

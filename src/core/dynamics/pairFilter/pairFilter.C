@@ -78,102 +78,6 @@ double sphereGap(const vec3& c, double r, const shape& S, const bodyPose& pS)
     return d - r;
 }
 
-// A convex mesh, or one made of convex pieces
-bool hasParts(const triangleMeshShape& m)
-{
-    return m.convex() || !m.pieces().empty();
-}
-
-
-// The least distance between the convex parts of two meshes (their
-// pieces, or the mesh itself when convex), 0 when some touch, at most cap;
-// pairs of parts are tried nearest balls first, and the search stops below
-// stopBelow
-double piecesGap
-(
-    const triangleMeshShape& A, const bodyPose& pA,
-    const triangleMeshShape& B, const bodyPose& pB,
-    double stopBelow, double cap
-)
-{
-    struct part
-    {
-        const std::vector<vec3>* corners;
-        bodyPose pose;
-        double radius;
-    };
-    // The parts of M whose balls come nearer than cap to the other body's
-    auto partsOf = [cap](const triangleMeshShape& M, const bodyPose& p, const vec3& c, double r)
-    {
-        std::vector<part> out;
-        if (M.convex())
-        {
-            out.push_back({&M.convex()->vertices(), p, M.boundingRadius()});
-            return out;
-        }
-        for (const auto& q : M.pieces())
-        {
-            const bodyPose pq = p*q->bodyInFile();
-            if ((pq.position() - c).norm() - q->boundingRadius() - r < cap)
-            {
-                out.push_back({&q->convex()->vertices(), pq, q->boundingRadius()});
-            }
-        }
-        return out;
-    };
-    // The convex hulls first (GJK on all points): apart, their distance
-    // bounds the bodies' (a ring beside a ring); meeting (a ring in
-    // another's bore, or interlocked), the pieces
-    {
-        const mat3 RaT = pA.rotation().transpose();
-        const convexClosest h = convexDistance
-        (
-            A.points(), B.points(),
-            RaT*pB.rotation(), RaT*(pB.position() - pA.position())
-        );
-        if (!h.intersecting && h.distance > stopBelow)
-        {
-            return std::min(cap, h.distance);
-        }
-    }
-    const std::vector<part> a = partsOf(A, pA, pB.position(), B.boundingRadius());
-    const std::vector<part> b = partsOf(B, pB, pA.position(), A.boundingRadius());
-
-    // The pairs of parts by the gap of their balls, nearest first: once a
-    // ball gap reaches the least distance found, no later pair is nearer
-    static thread_local std::vector<std::pair<double, std::pair<int, int>>> order;
-    order.clear();
-    for (size_t i = 0; i < a.size(); ++i)
-    {
-        for (size_t j = 0; j < b.size(); ++j)
-        {
-            const double balls =
-                (a[i].pose.position() - b[j].pose.position()).norm() - a[i].radius - b[j].radius;
-            if (balls < cap) order.push_back({balls, {int(i), int(j)}});
-        }
-    }
-    std::sort(order.begin(), order.end());
-    double best = cap;
-    for (const auto& o : order)
-    {
-        if (o.first >= best) break;
-        const part& x = a[o.second.first];
-        const part& y = b[o.second.second];
-        const mat3 RxT = x.pose.rotation().transpose();
-        const convexClosest c = convexDistance
-        (
-            *x.corners, *y.corners,
-            RxT*y.pose.rotation(), RxT*(y.pose.position() - x.pose.position())
-        );
-        best = std::min(best, c.intersecting ? 0.0 : c.distance);
-        if (best < stopBelow)
-        {
-            return best;
-        }
-    }
-    return best;
-}
-
 } // End anonymous namespace
 
 
@@ -272,10 +176,14 @@ double pairFilter::gapLowerBound
     }
     // Bodies of convex pieces (and convex ones): the least distance of
     // their pieces, exact, no surface inside another to hide
-    if (mA && mB && hasParts(*mA) && hasParts(*mB) && (!mA->convex() || !mB->convex()))
+    if
+    (
+        mA && mB && madeOfConvexParts(*mA) && madeOfConvexParts(*mB)
+     && (!mA->convex() || !mB->convex())
+    )
     {
-        const double g = piecesGap(*mA, pA, *mB, pB, stopBelow, cap);
-        return g > 0 ? g - 1e-9*std::min(RA, RB) : g;
+        const convexClosest c = closestParts(*mA, pA, *mB, pB, cap, stopBelow, true);
+        return c.intersecting ? 0.0 : c.distance - 1e-9*std::min(RA, RB);
     }
     const double g = triangleBVH::separation(*tA, *tB, R, t, cap, stopBelow);
     if (!(g > 0))

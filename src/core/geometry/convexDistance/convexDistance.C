@@ -369,15 +369,134 @@ convexWallGap convexWallDistance
     const auto* mA = shapeAs<triangleMeshShape>(A);
     const auto* mB = shapeAs<triangleMeshShape>(B);
     wallFirst = wA != nullptr;
-    if (wA && mB && mB->convex())
+    // A body of convex pieces: the least height over the planes of its
+    // pieces' corners is that of its own points (a height is least at a
+    // corner of its hull)
+    auto corners = [](const triangleMeshShape& m) -> const std::vector<vec3>*
     {
-        return convexWallDistance(*wA, pA, mB->convex()->vertices(), B.boundingRadius(), pB, reach);
+        if (m.convex()) return &m.convex()->vertices();
+        if (!m.pieces().empty()) return &m.points();
+        return nullptr;
+    };
+    if (wA && mB && corners(*mB))
+    {
+        return convexWallDistance(*wA, pA, *corners(*mB), B.boundingRadius(), pB, reach);
     }
-    if (wB && mA && mA->convex())
+    if (wB && mA && corners(*mA))
     {
-        return convexWallDistance(*wB, pB, mA->convex()->vertices(), A.boundingRadius(), pA, reach);
+        return convexWallDistance(*wB, pB, *corners(*mA), A.boundingRadius(), pA, reach);
     }
     return convexWallGap();
+}
+
+bool madeOfConvexParts(const triangleMeshShape& m)
+{
+    return m.convex() || !m.pieces().empty();
+}
+
+
+convexClosest closestParts
+(
+    const triangleMeshShape& A, const bodyPose& pA,
+    const triangleMeshShape& B, const bodyPose& pB,
+    double cap, double stopBelow, bool lowerBoundEnough
+)
+{
+    const mat3 RaT = pA.rotation().transpose();
+    // 1. The hulls
+    {
+        const mat3 R = RaT*pB.rotation();
+        const vec3 t = RaT*(pB.position() - pA.position());
+        convexClosest h = convexDistance(A.points(), B.points(), R, t);
+        if (!h.intersecting)
+        {
+            if (h.distance >= cap || (lowerBoundEnough && h.distance > stopBelow))
+            {
+                h.distance = std::min(h.distance, cap);
+                return h;
+            }
+            // On both surfaces (B's point back in B's frame)
+            const double tol = 1e-9*std::max(A.boundingRadius(), B.boundingRadius());
+            if
+            (
+                std::abs(A.signedDistance(h.pointA)) <= tol
+             && std::abs(B.signedDistance(R.transpose()*(h.pointB - t))) <= tol
+            )
+            {
+                return h;
+            }
+        }
+    }
+
+    // 2. The parts
+    struct part
+    {
+        const std::vector<vec3>* corners;
+        bodyPose pose;
+        double radius;
+    };
+    // The parts of M whose balls come nearer than cap to the other body's
+    auto partsOf = [cap](const triangleMeshShape& M, const bodyPose& p, const vec3& c, double r)
+    {
+        std::vector<part> out;
+        if (M.convex())
+        {
+            out.push_back({&M.convex()->vertices(), p, M.boundingRadius()});
+            return out;
+        }
+        for (const auto& q : M.pieces())
+        {
+            const bodyPose pq = p*q->bodyInFile();
+            if ((pq.position() - c).norm() - q->boundingRadius() - r < cap)
+            {
+                out.push_back({&q->convex()->vertices(), pq, q->boundingRadius()});
+            }
+        }
+        return out;
+    };
+    const std::vector<part> a = partsOf(A, pA, pB.position(), B.boundingRadius());
+    const std::vector<part> b = partsOf(B, pB, pA.position(), A.boundingRadius());
+    static thread_local std::vector<std::pair<double, std::pair<int, int>>> order;
+    order.clear();
+    for (size_t i = 0; i < a.size(); ++i)
+    {
+        for (size_t j = 0; j < b.size(); ++j)
+        {
+            const double balls =
+                (a[i].pose.position() - b[j].pose.position()).norm() - a[i].radius - b[j].radius;
+            if (balls < cap) order.push_back({balls, {int(i), int(j)}});
+        }
+    }
+    std::sort(order.begin(), order.end());
+    convexClosest best;
+    best.distance = cap;
+    for (const auto& o : order)
+    {
+        if (o.first >= best.distance) break;
+        const part& x = a[o.second.first];
+        const part& y = b[o.second.second];
+        const mat3 RxT = x.pose.rotation().transpose();
+        const convexClosest c = convexDistance
+        (
+            *x.corners, *y.corners,
+            RxT*y.pose.rotation(), RxT*(y.pose.position() - x.pose.position())
+        );
+        if (c.intersecting)
+        {
+            best = c;
+            best.distance = 0;
+            return best;
+        }
+        if (c.distance < best.distance)
+        {
+            // The points from x's frame to A's
+            best = c;
+            best.pointA = RaT*(x.pose.toWorld(c.pointA) - pA.position());
+            best.pointB = RaT*(x.pose.toWorld(c.pointB) - pA.position());
+            if (best.distance < stopBelow) return best;
+        }
+    }
+    return best;
 }
 
 } // End namespace immersedDEM
