@@ -310,8 +310,12 @@ TEST(convexOverlap, oneBodyInsideTheOther)
         const contactRegion& r = g.regions[0];
         EXPECT_NEAR(r.volume, ico.volume(), 1e-12*ico.volume());
         EXPECT_LT((r.point - pB.position()).norm(), 1e-12);
-        EXPECT_EQ(r.area, 0);
-        EXPECT_EQ(r.areaVector, vec3::Zero());
+        // S and M: the integrals over A's closed surface (ico first) or
+        // over nothing (big first), zero to round-off (1e-12 of the
+        // icosahedron's area 4e-5 m2, and of that times its size)
+        EXPECT_LT(r.area, 1e-12*4e-5);
+        EXPECT_LT(r.areaVector.norm(), 1e-12*4e-5);
+        EXPECT_LT(r.areaMoment.norm(), 1e-12*4e-5*0.002);
         // The normal: the centre line from A to B
         const vec3 line = (bigFirst ? 1 : -1)*(pB.position() - pA.position()).normalized();
         EXPECT_LT((r.normal - line).norm(), 1e-12);
@@ -534,4 +538,45 @@ TEST(convexOverlap, cubeAgainstTheInsideOfAFacetedTube)
     const contactGeometry pg = virtualMeshOverlap().evaluate(outside, wall, cube, q2, s);
     ASSERT_FALSE(pg.regions.empty());
     EXPECT_GT(pg.leaves, 0);
+}
+
+
+TEST(convexOverlap, slabThroughABlockKeepsItsAreaMoment)
+{
+    // A plate 0.2 mm thick, wider than the block, through a sheared block
+    // (a parallelepiped whose sides lean 0.5 along x): A's faces inside B
+    // are the plate's two faces, of equal area (the block's sections at
+    // two heights are translates) and opposite, so S = 0 (a translation
+    // leaves the volume unchanged) but their centroids are apart, so a
+    // rotation does not: M against the central difference of the volume
+    // (tolerance 1e-6 of |M|: the difference's own error at a step of
+    // 1e-7 rad)
+    const triangleMeshShape plate(primitiveMeshes::box(vec3(0.01, 0.01, 0.0001)), "plate");
+    triangleSoup sheared = primitiveMeshes::box(vec3(0.002, 0.003, 0.0025));
+    mat3 shear = mat3::Identity();
+    shear(0, 2) = 0.5;
+    primitiveMeshes::transform(sheared, shear, vec3::Zero());
+    const triangleMeshShape block(sheared, "sheared block");
+    const quat tilt = bodyPose::axisAngle(vec3(1, 0.3, 0), 0.4);
+    const bodyPose pA = plate.poseFromFilePlacement(tilt, tilt*vec3(0.0002, 0.0001, 0.0003));
+    const bodyPose pB = block.poseFromFilePlacement(tilt, vec3::Zero());
+    const contactGeometry g = convexOverlap().evaluate(plate, pA, block, pB, {});
+    ASSERT_EQ(g.regions.size(), 1u);
+    const contactRegion& r = g.regions[0];
+    // |S| below 1e-9 of a face's area (V over the thickness): it vanishes
+    EXPECT_LT(r.areaVector.norm(), 1e-9*r.volume/0.0002);
+    ASSERT_GT(r.areaMoment.norm(), 1e-3*r.volume);
+    vec3 fd;
+    const double h = 1e-7;
+    for (int i = 0; i < 3; ++i)
+    {
+        auto turned = [&](double a)
+        {
+            const quat q(Eigen::AngleAxisd(a, vec3::Unit(i)));
+            const bodyPose p(r.point + q*(pB.position() - r.point), q*pB.orientation());
+            return convexOverlap().evaluate(plate, pA, block, p, {}).volume();
+        };
+        fd[i] = (turned(h) - turned(-h))/(2*h);
+    }
+    EXPECT_LT((fd + r.areaMoment).norm(), 1e-6*r.areaMoment.norm());
 }

@@ -147,31 +147,16 @@ bodyTemplate readTemplate
     }
     else
     {
-        allowed.append(wordList{"file", "scale", "checkSelfIntersection", "maxConvexPieces"});
+        allowed.append(immersedDEMReaders::surfaceKeywords);
         immersedDEMChecks::allowOnly(d, allowed);
-        const fileName file = surfaceDir/d.get<fileName>("file");
-        const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
-        try
-        {
-            auto s = triangleMeshShape::fromFile
-            (
-                file, scale, d.getOrDefault<bool>("checkSelfIntersection", true),
-                immersedDEMReaders::readMaxConvexPieces(d)
-            );
-            for (const std::string& w : s->warnings())
-            {
-                WarningInFunction << "Template " << name << ": " << w.c_str() << endl;
-            }
-            Info<< "    template " << name << " contacts: "
-                << immersedDEMReaders::contactPathOf(*s).c_str() << endl;
-            t.geometry = std::move(s);
-        }
-        catch (const coreError& err)
-        {
-            FatalIOErrorInFunction(d)
-                << "Template '" << name << "', keyword 'file' in " << d.name()
-                << ":" << nl << "    " << err.what() << nl << exit(FatalIOError);
-        }
+        immersedDEMReaders::surfaceCache own;
+        const auto s = immersedDEMReaders::readSurfaceShape
+        (
+            d, surfaceDir, "Template '" + name + "'", own
+        );
+        Info<< "    template " << name << " contacts: "
+            << immersedDEMReaders::contactPathOf(*s).c_str() << endl;
+        t.geometry = s;
     }
 
     const word material = d.get<word>("material");

@@ -45,6 +45,81 @@ Eigen::Vector3i Foam::immersedDEMReaders::readLocks(const dictionary& d, const w
 
 
 
+const Foam::wordList Foam::immersedDEMReaders::surfaceKeywords
+{
+    "file", "parts", "scale", "checkSelfIntersection", "maxConvexPieces"
+};
+
+
+std::shared_ptr<const triangleMeshShape> Foam::immersedDEMReaders::readSurfaceShape
+(
+    const dictionary& d,
+    const fileName& surfaceDir,
+    const std::string& what,
+    surfaceCache& surfaces
+)
+{
+    const bool hasFile = d.found("file", keyType::LITERAL);
+    const bool hasParts = d.found("parts", keyType::LITERAL);
+    if (hasFile == hasParts)
+    {
+        FatalIOErrorInFunction(d)
+            << what.c_str() << " in " << d.name() << ": give either 'file' (one"
+            << " closed surface) or 'parts' (a list of convex closed surfaces"
+            << " whose union is the body), not " << (hasFile ? "both" : "neither")
+            << exit(FatalIOError);
+    }
+    const word key = hasFile ? "file" : "parts";
+    const fileNameList files =
+        hasFile ? fileNameList{d.get<fileName>("file")} : d.get<fileNameList>("parts");
+    if (files.empty())
+    {
+        FatalIOErrorInFunction(d)
+            << "Keyword 'parts' in " << d.name() << " is an empty list"
+            << exit(FatalIOError);
+    }
+    const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
+    const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
+    const int maxPieces = readMaxConvexPieces(d);
+    std::string names;
+    for (const fileName& f : files) names += std::string(surfaceDir/f) + ";";
+    std::shared_ptr<const triangleMeshShape>& shared =
+        surfaces[std::make_tuple(names, double(scale), selfCheck, maxPieces)];
+    try
+    {
+        if (!shared)
+        {
+            if (hasFile)
+            {
+                shared = triangleMeshShape::fromFile(surfaceDir/files[0], scale, selfCheck, maxPieces);
+            }
+            else
+            {
+                std::vector<triangleSoup> parts;
+                for (const fileName& f : files)
+                {
+                    parts.push_back(surfaceFileIO::read(surfaceDir/f));
+                    for (vec3& p : parts.back().points) p *= scale;
+                }
+                shared = triangleMeshShape::fromParts(std::move(parts), names);
+            }
+            for (const std::string& w : shared->warnings())
+            {
+                WarningInFunction << what.c_str() << ": " << w.c_str() << endl;
+            }
+        }
+    }
+    catch (const coreError& err)
+    {
+        FatalIOErrorInFunction(d)
+            << what.c_str() << ", keyword '" << key << "' in " << d.name()
+            << ":" << nl << "    " << err.what() << nl
+            << exit(FatalIOError);
+    }
+    return shared;
+}
+
+
 int Foam::immersedDEMReaders::readMaxConvexPieces(const dictionary& d)
 {
     const scalar n = immersedDEMChecks::inRangeOrDefault
@@ -101,33 +176,9 @@ rigidBody Foam::immersedDEMReaders::readBody
     }
     else
     {
-        allowed.append(wordList{"file", "scale", "checkSelfIntersection", "maxConvexPieces"});
+        allowed.append(surfaceKeywords);
         immersedDEMChecks::allowOnly(d, allowed);
-        const fileName file = surfaceDir/d.get<fileName>("file");
-        const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
-        const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
-        const int maxPieces = readMaxConvexPieces(d);
-        std::shared_ptr<const triangleMeshShape>& shared =
-            surfaces[std::make_tuple(std::string(file), double(scale), selfCheck, maxPieces)];
-        try
-        {
-            if (!shared)
-            {
-                shared = triangleMeshShape::fromFile(file, scale, selfCheck, maxPieces);
-                for (const std::string& w : shared->warnings())
-                {
-                    WarningInFunction << "Body " << name << ": " << w.c_str() << endl;
-                }
-            }
-            geometry = shared;
-        }
-        catch (const coreError& err)
-        {
-            FatalIOErrorInFunction(d)
-                << "Body '" << name << "', keyword 'file' in " << d.name()
-                << ":" << nl << "    " << err.what() << nl
-                << exit(FatalIOError);
-        }
+        geometry = readSurfaceShape(d, surfaceDir, "Body '" + name + "'", surfaces);
     }
 
     rigidBody b

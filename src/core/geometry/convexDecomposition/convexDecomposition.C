@@ -10,6 +10,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/convex_decomposition_3.h>
+#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <cmath>
@@ -274,6 +275,69 @@ convexDecomposition convexDecomposition::of(const triangleSoup& surface, int max
     return d;
 }
 
+
+convexDecomposition convexDecomposition::ofParts
+(
+    std::vector<triangleSoup> parts, triangleSoup& union_
+)
+{
+    convexDecomposition d;
+    union_ = triangleSoup();
+    if (parts.empty())
+    {
+        d.why = "no parts";
+        return d;
+    }
+    double radius = 0, sum = 0;
+    for (size_t i = 0; i < parts.size(); ++i)
+    {
+        radius = std::max(radius, radiusOf(parts[i]));
+        if (!convexPolyhedron::of(parts[i]))
+        {
+            d.why = "part " + std::to_string(i + 1) + " is not convex";
+            return d;
+        }
+        sum += massProperties::of(parts[i]).volume;
+    }
+    const floatingPointGuard noTraps;
+    try
+    {
+        nef N;
+        for (const triangleSoup& p : parts)
+        {
+            exactMesh m;
+            std::vector<exactMesh::Vertex_index> v;
+            for (const vec3& x : p.points)
+            {
+                v.push_back(m.add_vertex(exactKernel::Point_3(x.x(), x.y(), x.z())));
+            }
+            for (const triFace& f : p.faces)
+            {
+                m.add_face(v[f[0]], v[f[1]], v[f[2]]);
+            }
+            N += nef(m);
+        }
+        exactMesh u;
+        CGAL::convert_nef_polyhedron_to_polygon_mesh(N, u, true);
+        union_ = rounded(u, 1e-12*radius);
+    }
+    catch (const std::exception& e)
+    {
+        d.why = std::string("CGAL's union of the parts failed: ") + e.what();
+        return d;
+    }
+    const double V = massProperties::of(union_).volume;
+    if (!(std::abs(V - sum) <= 1e-9*V))
+    {
+        d.why =
+            "the parts overlap: their volumes add up to " + std::to_string(sum)
+          + ", their union's is " + std::to_string(V);
+        return d;
+    }
+    d.pieces = std::move(parts);
+    finish(d, V, radius);
+    return d;
+}
 
 } // End namespace immersedDEM
 

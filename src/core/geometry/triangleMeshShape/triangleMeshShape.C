@@ -139,6 +139,32 @@ void triangleMeshShape::setPieces(convexDecomposition d)
 }
 
 
+std::unique_ptr<triangleMeshShape> triangleMeshShape::fromParts
+(
+    std::vector<triangleSoup> parts, const std::string& name
+)
+{
+    for (size_t i = 0; i < parts.size(); ++i)
+    {
+        closedSurfaceCheck::checkAndRepair(parts[i], name + " part " + std::to_string(i + 1), true);
+    }
+    triangleSoup whole;
+    convexDecomposition d = convexDecomposition::ofParts(std::move(parts), whole);
+    if (d.empty())
+    {
+        throw coreError("Body '" + name + "' of convex parts: " + d.why);
+    }
+    auto out = std::make_unique<triangleMeshShape>(std::move(whole), name, true, 0);
+    for (triangleSoup& p : d.pieces)
+    {
+        for (vec3& x : p.points) x = out->bodyInFile().toBody(x);
+    }
+    out->setPieces(std::move(d));
+    out->piecesNote_ += " (the parts given)";
+    return out;
+}
+
+
 std::unique_ptr<triangleMeshShape> triangleMeshShape::scaled
 (
     double f, const std::string& name

@@ -414,7 +414,14 @@ contactGeometry convexOverlap::evaluate
     }
     else
     {
+        // S vanishes: A wholly inside B (A's closed surface: S and M
+        // zero), or A's faces inside B in balanced opposite pairs (a slab
+        // passing through B: translation leaves V unchanged, rotation not,
+        // so M is kept)
         r.normal = overlapTools::firstDirection({centreLine});
+        r.area = S.norm();
+        r.areaVector = S;
+        r.areaMoment = X.M;
     }
     g.regions.push_back(r);
     return g;
