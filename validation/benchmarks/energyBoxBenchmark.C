@@ -92,10 +92,12 @@ int main(int argc, char* argv[])
     }
     try
     {
-        triangleSoup soup = triangleMeshShape::fromFile(stl)->surface();
-        const double d0 = 2*std::cbrt(3*triangleMeshShape(soup, "star").volume()/(4*M_PI));
-        for (vec3& p : soup.points) p *= 0.01/d0;
-        auto star = std::make_shared<triangleMeshShape>(soup, "lumpyStar.stl");
+        // Read again at the scale that makes it 10 mm across (in the
+        // file's frame, where a non-convex pellet is decomposed into
+        // convex pieces)
+        const double d0 = 2*std::cbrt(3*triangleMeshShape::fromFile(stl)->volume()/(4*M_PI));
+        std::shared_ptr<const triangleMeshShape> star = triangleMeshShape::fromFile(stl, 0.01/d0);
+        std::printf("%s: %s\n", stl.c_str(), star->piecesNote().c_str());
         auto cube = std::make_shared<triangleMeshShape>(primitiveMeshes::box(vec3::Constant(0.004)), "cube");
         const double d = 0.01, L = 0.03;
 

@@ -5,6 +5,8 @@
 #include "massProperties.H"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_3.h>
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
@@ -61,6 +63,37 @@ triangleSoup rounded(exactMesh& m, double weld)
         {
             s.faces.push_back(t);
         }
+    }
+    return s;
+}
+
+
+using hullKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using hullPoint = hullKernel::Point_3;
+
+// The convex hull of points (exact predicates), triangulated
+triangleSoup hullOf(const std::vector<hullPoint>& points)
+{
+    CGAL::Surface_mesh<hullPoint> m;
+    CGAL::convex_hull_3(points.begin(), points.end(), m);
+    triangleSoup s;
+    std::map<CGAL::Surface_mesh<hullPoint>::Vertex_index, int> index;
+    for (const auto v : m.vertices())
+    {
+        const auto& p = m.point(v);
+        index[v] = int(s.points.size());
+        s.points.emplace_back(p.x(), p.y(), p.z());
+    }
+    for (const auto f : m.faces())
+    {
+        triFace t;
+        int k = 0;
+        for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+        {
+            if (k < 3) t[k] = index[v];
+            ++k;
+        }
+        if (k == 3) s.faces.push_back(t);
     }
     return s;
 }
@@ -127,7 +160,11 @@ void finish(convexDecomposition& d, double volume, double radius)
         P.push_back(convexPolyhedron::of(d.pieces[i]));
         if (!P.back())
         {
-            d.why = "piece " + std::to_string(i) + " is not convex";
+            d.why =
+                "piece " + std::to_string(i) + " is not convex once rounded to"
+                " doubles (a face meant flat that is not flat to round-off in this"
+                " frame, as in a single-precision STL turned from its design frame,"
+                " makes slivers)";
             break;
         }
         sum += massProperties::of(d.pieces[i]).volume;
@@ -251,9 +288,19 @@ convexDecomposition convexDecomposition::of(const triangleSoup& surface, int max
             }
             exactPolyhedron P;
             N.convert_inner_shell_to_polyhedron(c->shells_begin(), P);
-            exactMesh pm;
-            CGAL::copy_face_graph(P, pm);
-            triangleSoup piece = rounded(pm, 1e-12*radius);
+            // The hull of its corners rounded to doubles: exactly convex
+            // and closed whatever the rounding did to nearly coincident
+            // corners (the exact piece's own faces, rounded, can fold)
+            std::vector<hullPoint> corners;
+            for (auto v = P.vertices_begin(); v != P.vertices_end(); ++v)
+            {
+                const auto& x = v->point();
+                corners.emplace_back
+                (
+                    CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())
+                );
+            }
+            triangleSoup piece = hullOf(corners);
             if (piece.faces.size() >= 4)
             {
                 d.pieces.push_back(std::move(piece));

@@ -93,8 +93,19 @@ std::unique_ptr<convexPolyhedron> convexPolyhedron::of(const triangleSoup& s)
         for (int k = 0; k < 3; ++k) t[i][k] = newIndex[s.faces[i][k]];
         n2[i] = (x[t[i][1]] - x[t[i][0]]).cross(x[t[i][2]] - x[t[i][0]]);
         const double a = n2[i].norm();
-        // (a triangle of no area has no plane: it lies on its neighbours')
-        flat[i] = a > 1e-20*P->radius_*P->radius_;
+        const double longest = std::max
+        (
+            {
+                (x[t[i][1]] - x[t[i][0]]).squaredNorm(),
+                (x[t[i][2]] - x[t[i][1]]).squaredNorm(),
+                (x[t[i][0]] - x[t[i][2]]).squaredNorm()
+            }
+        );
+        // (a triangle of no area has no plane: it lies on its neighbours';
+        // nor has a sliver narrower than 1e-8 of its length, whose normal
+        // round-off would tilt by more than the tolerance: a convex piece
+        // cut exactly and rounded to doubles has such slivers)
+        flat[i] = a > 1e-20*P->radius_*P->radius_ && a > 1e-8*longest;
         n[i] = flat[i] ? vec3(n2[i]/a) : vec3::Zero();
     }
 
