@@ -81,7 +81,7 @@ std::shared_ptr<const triangleMeshShape> Foam::immersedDEMReaders::readSurfaceSh
     const scalar scale = immersedDEMChecks::positiveOrDefault(d, "scale", 1);
     const bool selfCheck = d.getOrDefault<bool>("checkSelfIntersection", true);
     const int maxPieces = readMaxConvexPieces(d);
-    std::string names;
+    std::string names = key + ":";
     for (const fileName& f : files) names += std::string(surfaceDir/f) + ";";
     std::shared_ptr<const triangleMeshShape>& shared =
         surfaces[std::make_tuple(names, double(scale), selfCheck, maxPieces)];
@@ -101,7 +101,9 @@ std::shared_ptr<const triangleMeshShape> Foam::immersedDEMReaders::readSurfaceSh
                     parts.push_back(surfaceFileIO::read(surfaceDir/f));
                     for (vec3& p : parts.back().points) p *= scale;
                 }
-                shared = triangleMeshShape::fromParts(std::move(parts), names);
+                std::string shown;
+                for (const fileName& f : files) shown += (shown.empty() ? "" : "+") + std::string(f);
+                shared = triangleMeshShape::fromParts(std::move(parts), shown, selfCheck);
             }
             for (const std::string& w : shared->warnings())
             {

@@ -136,9 +136,12 @@ void Foam::immersedDEMSlabs::toSlab
         std::shared_ptr<const triangleMeshShape> slab;
         try
         {
+            // (decomposed into convex pieces where the body was)
+            const auto* m = shapeAs<triangleMeshShape>(*b.geometry);
             slab = std::make_shared<triangleMeshShape>
             (
-                std::move(s), name + " (slab part)", false
+                std::move(s), name + " (slab part)", false,
+                m && !m->pieces().empty() ? convexDecomposition::defaultMaxPieces : 0
             );
         }
         catch (const coreError& err)

@@ -206,6 +206,8 @@ int convexDecomposition::countReflexEdges(const triangleSoup& s)
             third[{f[k], f[(k + 1) % 3]}] = f[(k + 2) % 3];
         }
     }
+    // (a fold within the convexity test's tolerance is round-off)
+    const double tol = convexPolyhedron::relativeTolerance*radiusOf(s);
     int reflex = 0;
     for (const triFace& f : s.faces)
     {
@@ -220,7 +222,7 @@ int convexDecomposition::countReflexEdges(const triangleSoup& s)
             // The neighbour's third corner in front of this face's plane:
             // the edge folds inwards
             const vec3 c = s.points[it->second] - s.points[i];
-            if (n.dot(c) > 1e-9*c.norm()) ++reflex;
+            if (n.dot(c) > tol) ++reflex;
         }
     }
     return reflex;
@@ -233,7 +235,7 @@ convexDecomposition convexDecomposition::of(const triangleSoup& surface, int max
     d.reflexEdges = countReflexEdges(surface);
     if (d.reflexEdges == 0)
     {
-        d.why = "the surface is convex";
+        d.why = "no fold beyond round-off, yet not flat-faceted to 1e-8 (a curved surface)";
         return d;
     }
     if (d.reflexEdges > 2*maxPieces)

@@ -134,6 +134,18 @@ void triangleMeshShape::setPieces(convexDecomposition d)
             )
         );
     }
+    for (size_t i = 0; i < pieces_.size(); ++i)
+    {
+        // (checked in the frame decomposed; again in its own, tighter)
+        if (!pieces_[i]->convex())
+        {
+            pieces_.clear();
+            piecesNote_ =
+                "not convex, not decomposed: piece " + std::to_string(i)
+              + " is not convex to round-off in its own frame";
+            return;
+        }
+    }
     pieceNeighbours_ = std::move(d.neighbours);
     piecesNote_ = std::to_string(pieces_.size()) + " convex pieces";
 }
@@ -141,25 +153,33 @@ void triangleMeshShape::setPieces(convexDecomposition d)
 
 std::unique_ptr<triangleMeshShape> triangleMeshShape::fromParts
 (
-    std::vector<triangleSoup> parts, const std::string& name
+    std::vector<triangleSoup> parts, const std::string& name,
+    bool checkSelfIntersection
 )
 {
     for (size_t i = 0; i < parts.size(); ++i)
     {
-        closedSurfaceCheck::checkAndRepair(parts[i], name + " part " + std::to_string(i + 1), true);
+        closedSurfaceCheck::checkAndRepair
+        (
+            parts[i], "part " + std::to_string(i + 1), checkSelfIntersection
+        );
     }
     triangleSoup whole;
     convexDecomposition d = convexDecomposition::ofParts(std::move(parts), whole);
     if (d.empty())
     {
-        throw coreError("Body '" + name + "' of convex parts: " + d.why);
+        throw coreError("the convex parts: " + d.why);
     }
-    auto out = std::make_unique<triangleMeshShape>(std::move(whole), name, true, 0);
+    auto out = std::make_unique<triangleMeshShape>(std::move(whole), name, checkSelfIntersection, 0);
     for (triangleSoup& p : d.pieces)
     {
         for (vec3& x : p.points) x = out->bodyInFile().toBody(x);
     }
     out->setPieces(std::move(d));
+    if (out->pieces_.empty())
+    {
+        throw coreError("the convex parts: " + out->piecesNote_);
+    }
     out->piecesNote_ += " (the parts given)";
     return out;
 }

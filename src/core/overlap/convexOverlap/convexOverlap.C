@@ -418,9 +418,8 @@ contactGeometry convexOverlap::evaluate
         // zero), or A's faces inside B in balanced opposite pairs (a slab
         // passing through B: translation leaves V unchanged, rotation not,
         // so M is kept)
+        // (S itself is then round-off: zero, not a direction)
         r.normal = overlapTools::firstDirection({centreLine});
-        r.area = S.norm();
-        r.areaVector = S;
         r.areaMoment = X.M;
     }
     g.regions.push_back(r);

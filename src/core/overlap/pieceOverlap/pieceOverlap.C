@@ -311,6 +311,13 @@ contactGeometry pieceOverlap::evaluate
             m.box.add(found[i].r.box);
         }
         if (!boxed) m.box = axisAlignedBox();
+        // S of parts that cancel (a body wholly inside the other): zero
+        double parts = 0;
+        for (const int i : G) parts += found[i].r.area;
+        if (!(m.areaVector.norm() > 1e-9*parts))
+        {
+            m.areaVector = vec3::Zero();
+        }
         m.area = m.areaVector.norm();
         m.normal = m.area > 0 ? vec3(m.areaVector/m.area) : found[largest].r.normal;
         g.regions.push_back(m);
