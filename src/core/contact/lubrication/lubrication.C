@@ -216,34 +216,14 @@ closestApproach lubrication::approach
         a.pointA = wallFirst ? cw.pointWall : cw.pointBody;
         a.pointB = wallFirst ? cw.pointBody : cw.pointWall;
     }
-    else if (mA && mB && mA->convex() && mB->convex())
+    else if (mA && mB && madeOfConvexParts(*mA) && madeOfConvexParts(*mB))
     {
-        // Two convex meshes: their corners' distance (GJK)
-        const convexClosest c =
-            convexDistance(mA->convex()->vertices(), mB->convex()->vertices(), R, t);
-        if (c.intersecting)
-        {
-            a.found = true;
-            a.gap = 0;
-            return a;
-        }
-        if (!(c.distance < cap))
-        {
-            return a;
-        }
-        a.found = true;
-        a.gap = c.distance;
-        a.pointA = pA.toWorld(c.pointA);
-        a.pointB = pA.toWorld(c.pointB);
-    }
-    else if
-    (
-        mA && mB && madeOfConvexParts(*mA) && madeOfConvexParts(*mB)
-    )
-    {
-        // Bodies of convex pieces: their hulls' or their pieces' closest
-        // points (GJK), exact
-        const convexClosest c = closestParts(*mA, pA, *mB, pB, cap, -1, false);
+        // Two convex meshes: their corners' distance (GJK); bodies of
+        // convex pieces: their hulls' or their pieces' closest points
+        // (GJK), exact
+        const convexClosest c = mA->convex() && mB->convex()
+            ? convexDistance(mA->convex()->vertices(), mB->convex()->vertices(), R, t)
+            : closestParts(*mA, pA, *mB, pB, cap, -1, false);
         if (c.intersecting)
         {
             a.found = true;

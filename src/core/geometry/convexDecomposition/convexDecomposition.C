@@ -10,10 +10,8 @@
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/copy_face_graph.h>
 #include <CGAL/convex_decomposition_3.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <cmath>
 #include <map>
@@ -30,14 +28,14 @@ using exactPolyhedron = CGAL::Polyhedron_3<exactKernel>;
 using nef = CGAL::Nef_polyhedron_3<exactKernel>;
 
 
-// A triangulated exact mesh rounded to doubles: points closer than weld
+// A triangulated surface mesh in doubles: points closer than weld
 // (rounding made them one, or a cut passed within round-off of a corner)
 // are one point, and triangles that lose a corner so are dropped
-triangleSoup rounded(exactMesh& m, double weld)
+template<class Mesh>
+triangleSoup soupOf(const Mesh& m, double weld)
 {
-    CGAL::Polygon_mesh_processing::triangulate_faces(m);
     triangleSoup s;
-    std::map<exactMesh::Vertex_index, int> index;
+    std::map<typename Mesh::Vertex_index, int> index;
     for (const auto v : m.vertices())
     {
         const auto& p = m.point(v);
@@ -76,26 +74,7 @@ triangleSoup hullOf(const std::vector<hullPoint>& points)
 {
     CGAL::Surface_mesh<hullPoint> m;
     CGAL::convex_hull_3(points.begin(), points.end(), m);
-    triangleSoup s;
-    std::map<CGAL::Surface_mesh<hullPoint>::Vertex_index, int> index;
-    for (const auto v : m.vertices())
-    {
-        const auto& p = m.point(v);
-        index[v] = int(s.points.size());
-        s.points.emplace_back(p.x(), p.y(), p.z());
-    }
-    for (const auto f : m.faces())
-    {
-        triFace t;
-        int k = 0;
-        for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m))
-        {
-            if (k < 3) t[k] = index[v];
-            ++k;
-        }
-        if (k == 3) s.faces.push_back(t);
-    }
-    return s;
+    return soupOf(m, 0);
 }
 
 
@@ -368,7 +347,7 @@ convexDecomposition convexDecomposition::ofParts
         }
         exactMesh u;
         CGAL::convert_nef_polyhedron_to_polygon_mesh(N, u, true);
-        union_ = rounded(u, 1e-12*radius);
+        union_ = soupOf(u, 1e-12*radius);
     }
     catch (const std::exception& e)
     {
