@@ -199,20 +199,9 @@ result onePair
     // Along x: the support of each body from its bounding box in the
     // body frame is not the contact gap, so find the touching distance by
     // bisection on the exact overlap volume
-    const auto exact = overlapEngine::New("exact");
     const quat qa = quat::Identity();
     const quat qb = bodyPose::axisAngle(vec3(0.3, 1, 0.2), 0.7);
-    double lo = 0, hi = 4*shape->boundingRadius();
-    for (int i = 0; i < 60; ++i)
-    {
-        const double m = 0.5*(lo + hi);
-        const contactGeometry g = exact->evaluate
-        (
-            *shape, bodyPose(vec3::Zero(), qa), *shape, bodyPose(vec3(m, 0, 0), qb), o
-        );
-        (g.volume() > 0 ? lo : hi) = m;
-    }
-    const double x = lo - depth;
+    const double x = benchmark::touchingDistance(*shape, *shape, qb) - depth;
     rigidBody A("a", shape, 2500), B("b", shape, 2500);
     A.pose = bodyPose(vec3::Zero(), qa);
     B.pose = bodyPose(vec3(x, 0, 0), qb);
@@ -551,17 +540,7 @@ int main(int argc, char* argv[])
             }
             auto pressed = [&](const std::string& name, std::shared_ptr<const triangleMeshShape> sh, const overlapSettings& o)
             {
-                const auto exact = overlapEngine::New("exact");
-                double lo = 0, hi = 4*sh->boundingRadius();
-                for (int i = 0; i < 60; ++i)
-                {
-                    const double m = 0.5*(lo + hi);
-                    const contactGeometry cg = exact->evaluate
-                    (
-                        *sh, bodyPose(vec3::Zero(), quat::Identity()), *sh, bodyPose(vec3(m, 0, 0), qb), o
-                    );
-                    (cg.volume() > 0 ? lo : hi) = m;
-                }
+                const double lo = benchmark::touchingDistance(*sh, *sh, qb);
                 reuseCase c;
                 c.name = name;
                 c.A = sh;

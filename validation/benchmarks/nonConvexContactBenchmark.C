@@ -156,18 +156,7 @@ pressedState settle
     double x = 0;
     if (A)
     {
-        const auto exact = overlapEngine::New("exact");
-        double lo = 0, hi = 4*A->boundingRadius();
-        for (int i = 0; i < 60; ++i)
-        {
-            const double m = 0.5*(lo + hi);
-            const contactGeometry g = exact->evaluate
-            (
-                *A, bodyPose(vec3::Zero(), quat::Identity()), *B, bodyPose(vec3(m, 0, 0), qb), {}
-            );
-            (g.volume() > 0 ? lo : hi) = m;
-        }
-        x = lo;
+        x = benchmark::touchingDistance(*A, *B, qb);
     }
     else
     {

@@ -65,6 +65,23 @@ bool unbounded(const shape& S)
 }
 
 
+// The shape S at pose p as a part, boxed unless a plane or a wall
+part partOf(const shape& S, const bodyPose& p, int index)
+{
+    part q{&S, p, index, axisAlignedBox()};
+    if (!unbounded(S))
+    {
+        q.box = S.worldBox(p);
+        const axisAlignedBox b = S.localBox();
+        q.centre = p.toWorld(b.centre());
+        q.axes = p.rotation();
+        // (grown by 1e-9 of the size: touching boxes meet)
+        q.half = 0.5*b.span() + vec3::Constant(1e-9*S.boundingRadius());
+    }
+    return q;
+}
+
+
 std::vector<part> partsOf(const shape& S, const bodyPose& p)
 {
     std::vector<part> out;
@@ -74,22 +91,12 @@ std::vector<part> partsOf(const shape& S, const bodyPose& p)
         const auto& P = m->pieces();
         for (size_t i = 0; i < P.size(); ++i)
         {
-            const bodyPose q = p*P[i]->bodyInFile();
-            out.push_back({P[i].get(), q, int(i), P[i]->worldBox(q)});
+            out.push_back(partOf(*P[i], p*P[i]->bodyInFile(), int(i)));
         }
     }
     else
     {
-        out.push_back({&S, p, 0, unbounded(S) ? axisAlignedBox() : S.worldBox(p)});
-    }
-    for (part& q : out)
-    {
-        if (unbounded(*q.s)) continue;
-        const axisAlignedBox b = q.s->localBox();
-        q.centre = q.pose.toWorld(b.centre());
-        q.axes = q.pose.rotation();
-        // (grown by 1e-9 of the size: touching boxes meet)
-        q.half = 0.5*b.span() + vec3::Constant(1e-9*q.s->boundingRadius());
+        out.push_back(partOf(S, p, 0));
     }
     return out;
 }
@@ -176,16 +183,7 @@ contactGeometry pieceOverlap::evaluate
     // and their boxes against its box
     auto near = [](std::vector<part> P, const shape& other, const bodyPose& pOther)
     {
-        const axisAlignedBox otherBox =
-            unbounded(other) ? axisAlignedBox() : other.worldBox(pOther);
-        part whole{&other, pOther, 0, otherBox};
-        if (!unbounded(other))
-        {
-            const axisAlignedBox b = other.localBox();
-            whole.centre = pOther.toWorld(b.centre());
-            whole.axes = pOther.rotation();
-            whole.half = 0.5*b.span() + vec3::Constant(1e-9*other.boundingRadius());
-        }
+        const part whole = partOf(other, pOther, 0);
         std::vector<part> kept;
         for (const part& q : P)
         {
@@ -194,7 +192,10 @@ contactGeometry pieceOverlap::evaluate
                 unbounded(*q.s)
              || (
                     reaches(q.pose.position(), q.s->boundingRadius(), other, pOther)
-                 && (otherBox.empty() || (q.box.overlaps(otherBox) && !orientedApart(q, whole)))
+                 && (
+                        whole.box.empty()
+                     || (q.box.overlaps(whole.box) && !orientedApart(q, whole))
+                    )
                 )
             )
             {
