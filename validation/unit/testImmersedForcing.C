@@ -64,12 +64,30 @@ TEST(immersedForcing, fluidForceTermsAndBuoyancy)
     const double rho = 1000, deltaT = 1e-3, Vb = 1e-6;
     const vec3 g(0, 0, -9.81);
     const vec3 P(1e-6, 0, 2e-6), M(0, 3e-9, 0), M0(0, 1e-9, 0);
-    const vec3 F = immersedForcing::fluidForce(rho, P, M, M0, deltaT, Vb, g);
+    const auto ddt = immersedForcing::timeDerivative::euler(deltaT);
+    const vec3 F = immersedForcing::fluidForce(rho, P, ddt.of(M, M0, vec3::Zero()), Vb, g);
     EXPECT_NEAR(F.x(), rho*1e-6, 1e-15);
     EXPECT_NEAR(F.y(), rho*2e-9/deltaT, 1e-15);
     EXPECT_NEAR(F.z(), rho*2e-6 + rho*Vb*9.81, 1e-15);   // buoyancy upwards
-    const vec3 T = immersedForcing::fluidTorque(rho, P, M, M0, deltaT);
+    const vec3 T = immersedForcing::fluidTorque(rho, P, ddt.of(M, M0, vec3::Zero()));
     EXPECT_NEAR(T.z(), rho*2e-6, 1e-15);
+}
+
+TEST(immersedForcing, backwardDerivativeIsExactForQuadratics)
+{
+    // x(t) = 3 + 2 t + 5 t^2 at t = -0.3, 0, 0.7 (steps 0.3 then 0.7):
+    // BDF2 with variable steps is exact for a quadratic, dx/dt(0.7) = 9
+    const auto x = [](double t) { return vec3(3 + 2*t + 5*t*t, 0, 0); };
+    const auto d = immersedForcing::timeDerivative::backward(0.7, 0.3);
+    EXPECT_NEAR(d.of(x(0.7), x(0), x(-0.3)).x(), 2 + 10*0.7, 1e-12);
+    // equal steps: the textbook (3 x - 4 x0 + x00)/(2 dt)
+    const auto e = immersedForcing::timeDerivative::backward(0.5, 0.5);
+    EXPECT_NEAR(e.c, 1.5, 1e-15);
+    EXPECT_NEAR(e.c0, 2, 1e-15);
+    EXPECT_NEAR(e.c00, 0.5, 1e-15);
+    // Euler is exact for a line
+    const auto f = immersedForcing::timeDerivative::euler(0.7);
+    EXPECT_NEAR(f.of(vec3(1 + 0.7*4, 0, 0), vec3(1, 0, 0), vec3(-7, 0, 0)).x(), 4, 1e-12);
 }
 
 // The restart writes what fields() lists: every member, each name once
@@ -86,46 +104,67 @@ TEST(fluidLoad, fieldsListEveryMemberOnce)
     };
     fluidLoad::fields(l, counter{names, nVectors, nScalars});
     EXPECT_EQ(nVectors, 6);
-    EXPECT_EQ(nScalars, 5);
-    EXPECT_EQ(names.size(), 11u);
+    EXPECT_EQ(nScalars, 7);
+    EXPECT_EQ(names.size(), 13u);
     // Every member was reached: none is left at its default
     EXPECT_EQ(l.force.sum() + l.torque.sum() + l.referenceVelocity.sum()
         + l.referenceAcceleration.sum() + l.referenceAngularVelocity.sum()
         + l.referenceAngularAcceleration.sum(), 18);
-    EXPECT_EQ(l.damping + l.addedMass + l.nominalAddedMass + l.referenceTime + l.angularDamping, 5);
-    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 5*sizeof(double));
+    EXPECT_EQ(l.damping + l.addedMass + l.nominalAddedMass + l.referenceTime
+        + l.angularDamping + l.addedInertia + l.courseExtrapolated, 7);
+    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 7*sizeof(double));
 }
 
-TEST(fluidLoad, stabilisedFollowsTheExtrapolatedMotion)
+// The contact rule: no inertia, dampers m_a/dt and I_a/dt on the
+// departure from the course extrapolated with the reference accelerations
+TEST(fluidLoad, heldDampsTheDepartureFromTheExtrapolatedCourse)
 {
-    const double deltaT = 1e-3, t = 0.5;
-    const vec3 v(0.1, 0, 0), vPrev(0.09, 0, 0), w(0, 1, 0), wPrev(0, 1, 0);
-    // A body in contact: the damper
-    const fluidLoad l = fluidLoad::stabilised
+    const double t = 0.5, dt = 1e-3;
+    const vec3 v(0.1, 0, 0), a(10, 0, 0), w(0, 1, 0), alpha(0, 0, 3);
+    const fluidLoad l = fluidLoad::held
     (
-        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.1, false, 0.01, deltaT, t, v, vPrev, w, wPrev
+        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.01, 0.05, dt, t, v, a, w, alpha
     );
-    EXPECT_DOUBLE_EQ(l.damping, 0.2/deltaT);
     EXPECT_EQ(l.addedMass, 0);
-    EXPECT_EQ(l.nominalAddedMass, 0);
-    EXPECT_DOUBLE_EQ(l.angularDamping, 0.01/deltaT);
-    // On the extrapolated course: the plain load
-    const vec3 vLater = v + 0.5*deltaT*(v - vPrev)/deltaT;
-    EXPECT_NEAR((l.appliedForce(vLater, t + 0.5*deltaT) - vec3(0, 0, 1)).norm(), 0, 1e-12);
-    // A departure meets the added mass
-    EXPECT_NEAR(l.appliedForce(v + vec3(0.01, 0, 0), t).x(), -0.2/deltaT*0.01, 1e-12);
-    EXPECT_NEAR((l.appliedTorque(w, t) - vec3(0, 0, 2)).norm(), 0, 1e-12);
-    EXPECT_NEAR(l.inertialForce().norm(), 0, 1e-15);
+    EXPECT_EQ(l.addedInertia, 0);
+    EXPECT_EQ(l.nominalAddedMass, 0.05);
+    EXPECT_NEAR(l.damping, 0.2/dt, 1e-9);
+    EXPECT_NEAR(l.angularDamping, 0.01/dt, 1e-9);
+    EXPECT_TRUE(l.inertialForce().isZero());
+    // On the course at a later time: the plain load
+    const double s = 2e-4;
+    EXPECT_NEAR((l.appliedForce(v + s*a, t + s) - vec3(0, 0, 1)).norm(), 0, 1e-12);
+    EXPECT_NEAR((l.appliedTorque(w + s*alpha, t + s) - vec3(0, 0, 2)).norm(), 0, 1e-12);
+    // Off it: the damper
+    EXPECT_NEAR(l.appliedForce(v, t + s).x(), 0.2/dt*s*10, 1e-9);
+    EXPECT_NEAR(l.appliedTorque(w, t + s).z(), 2 + 0.01/dt*s*3, 1e-9);
+}
 
-    // A body free of contacts: the added mass is inertia, the force plain
-    const fluidLoad f = fluidLoad::stabilised
-    (
-        vec3(0, 0, 1), vec3(0, 0, 2), 0.2, 0.1, true, 0.01, deltaT, t, v, vPrev, w, wPrev
-    );
-    EXPECT_EQ(f.damping, 0);
-    EXPECT_DOUBLE_EQ(f.addedMass, 0.2);
-    EXPECT_DOUBLE_EQ(f.nominalAddedMass, 0.1);
-    EXPECT_NEAR((f.appliedForce(v + vec3(0.01, 0, 0), t) - vec3(0, 0, 1)).norm(), 0, 1e-12);
-    EXPECT_NEAR((f.inertialForce() - 0.2*(v - vPrev)/deltaT).norm(), 0, 1e-12);
-    EXPECT_DOUBLE_EQ(f.angularDamping, 0.01/deltaT);
+TEST(fluidLoad, coupledAnswersADepartureFromWhatTheFluidSaw)
+{
+    const double t = 0.5;
+    const vec3 v(0.1, 0, 0), a(10, 0, 0), w(0, 1, 0), alpha(0, 0, 3);
+    fluidImpedance::coefficients z;
+    z.addedMass = 0.2;
+    z.damping = 40;
+    z.addedInertia = 0.01;
+    z.angularDamping = 5;
+    z.nominalAddedMass = 0.1;
+    const fluidLoad l = fluidLoad::coupled(vec3(0, 0, 1), vec3(0, 0, 2), z, t, v, a, w, alpha);
+    EXPECT_EQ(l.damping, 40);
+    EXPECT_EQ(l.addedMass, 0.2);
+    // (the body's own added mass, what its contacts move with it)
+    EXPECT_EQ(l.nominalAddedMass, 0.1);
+    EXPECT_EQ(l.addedInertia, 0.01);
+    EXPECT_EQ(l.angularDamping, 5);
+    // At the velocities the fluid saw: the plain load
+    // (at any time within the step: the course is not extrapolated)
+    EXPECT_NEAR((l.appliedForce(v, t + 0.1) - vec3(0, 0, 1)).norm(), 0, 1e-12);
+    EXPECT_NEAR((l.appliedTorque(w, t + 0.1) - vec3(0, 0, 2)).norm(), 0, 1e-12);
+    // Another velocity meets the viscous resistance
+    EXPECT_NEAR(l.appliedForce(v + vec3(0.01, 0, 0), t).x(), -40*0.01, 1e-12);
+    EXPECT_NEAR(l.appliedTorque(w + vec3(0.1, 0, 0), t).x(), -5*0.1, 1e-12);
+    // The added mass and moment carry the reference accelerations
+    EXPECT_NEAR((l.inertialForce() - 0.2*a).norm(), 0, 1e-12);
+    EXPECT_NEAR((l.inertialTorque() - 0.01*alpha).norm(), 0, 1e-12);
 }

@@ -55,10 +55,11 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
         est.record(F, a, 1e-4);
         const double ma =
             measure ? est.stabilisation(m, Ca*rho*V, 100*rho*V) : Ca*rho*V;
-        b.fluid = fluidLoad::stabilised
+        b.fluid = fluidLoad::held
         (
-            F, vec3::Zero(), ma, Ca*rho*V, false, 0, dt, dem.time(),
-            b.velocity, vPrevious, b.angularVelocity, b.angularVelocity
+            F, vec3::Zero(), ma, 0, Ca*rho*V, dt, dem.time(),
+            b.velocity, (b.velocity - vPrevious)/dt,
+            b.angularVelocity, vec3::Zero()
         );
         vPrevious = b.velocity;
         dem.advance(dt);

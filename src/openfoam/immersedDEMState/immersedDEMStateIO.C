@@ -32,14 +32,15 @@ struct fluidLoadReader
     void operator()(const char* name, vec3& x) { x = c(d.get<Foam::vector>(name)); }
     void operator()(const char* name, double& x)
     {
-        // Restart files written before impactInertia (no added mass as
-        // inertia: the damper, as they were written)
+        // Restart files written before the implicit coupling have no
+        // added moment of inertia and no course flag: none, as they were
+        // written
         if
         (
             !d.found(name)
          && (
-                std::string(name) == "fluidAddedMass"
-             || std::string(name) == "fluidNominalAddedMass"
+                std::string(name) == "fluidAddedInertia"
+             || std::string(name) == "fluidCourseExtrapolated"
             )
         )
         {

@@ -7,7 +7,9 @@
 #include "syncTools.H"
 #include "surfaceFields.H"
 
+#include <algorithm>
 #include <bitset>
+#include <cmath>
 
 using namespace immersedDEM;
 
@@ -23,28 +25,34 @@ namespace
 constexpr auto v = &Foam::coreConversion::toFoam;
 constexpr auto c = &Foam::coreConversion::toCore;
 
-// measuredAddedMass::fields visitors: each member under prefix + its name
+// The measured added mass's writer and reader for the restart (prefix +
+// the measurement's member names)
 struct measuredWriter
 {
     Foam::Ostream& os;
-    const Foam::word prefix;
-    void operator()(const char* name, const vec3& x) { os.writeEntry(Foam::word(prefix + name), v(x)); }
-    void operator()(const char* name, const double x) { os.writeEntry(Foam::word(prefix + name), x); }
+    const char* prefix;
+    void operator()(const char* n, const double& x) const
+    {
+        os.writeEntry(Foam::word(Foam::word(prefix) + n), x);
+    }
+    void operator()(const char* n, const vec3& x) const
+    {
+        os.writeEntry(Foam::word(Foam::word(prefix) + n), v(x));
+    }
 };
 
-// Missing entries (a restart written before the measurement) keep the
-// member as it is
 struct measuredReader
 {
     const Foam::dictionary& d;
-    const Foam::word prefix;
-    void operator()(const char* name, vec3& x)
+    const char* prefix;
+    void operator()(const char* n, double& x) const
     {
-        x = c(d.getOrDefault<Foam::vector>(prefix + name, v(x)));
+        d.readIfPresent(Foam::word(Foam::word(prefix) + n), x);
     }
-    void operator()(const char* name, double& x)
+    void operator()(const char* n, vec3& x) const
     {
-        x = d.getOrDefault<Foam::scalar>(prefix + name, x);
+        Foam::vector y;
+        if (d.readIfPresent(Foam::word(Foam::word(prefix) + n), y)) x = c(y);
     }
 };
 
@@ -56,13 +64,19 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     const label n = dem.bodies().size();
     innerMomentum_.setSize(n, Zero);
     innerAngularMomentum_.setSize(n, Zero);
+    innerMomentum0_.setSize(n, Zero);
+    innerAngularMomentum0_.setSize(n, Zero);
     previousVelocity_.setSize(n, Zero);
     previousAngularVelocity_.setSize(n, Zero);
+    previousVelocity0_.setSize(n, Zero);
+    previousAngularVelocity0_.setSize(n, Zero);
+    history_.setSize(n, 0);
+    wasInContact_.setSize(n, false);
+    recentContacts_.setSize(n, allSteps);
     addedMass_.setSize(n);
     addedInertia_.setSize(n);
-    reportedAddedMass_.setSize(n, 0);
-    previousContact_.setSize(n, false);
-    recentContacts_.setSize(n, allSteps);
+    sizes_.setSize(n);
+    sized_.setSize(n, false);
     for (label i = 0; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -350,6 +364,70 @@ void Foam::immersedFluidCoupling::sealedFacePressure
 }
 
 
+const immersedDEM::fluidImpedance::bodySize&
+Foam::immersedFluidCoupling::sizeOf(const demSolver& dem, const label i)
+{
+    if (sized_[i])
+    {
+        return sizes_[i];
+    }
+    const rigidBody& b = dem.bodies()[i];
+    const triangleSoup surface = b.geometry->surface();
+    scalar area = 0;
+    for (const auto& f : surface.faces)
+    {
+        const vec3& p0 = surface.points[f[0]];
+        area += 0.5*(surface.points[f[1]] - p0).cross(surface.points[f[2]] - p0).norm();
+    }
+    fluidImpedance::bodySize& s = sizes_[i];
+    s.volume = b.geometry->volume();
+    s.area = area;
+    s.circumscribedRadius = b.geometry->boundingRadius();
+    s.depth = 0;
+
+    // A 2D body (one translation locked, and the rotations about the
+    // other two axes): per unit depth along the locked axis, which is
+    // fixed in the body's frame (it turns only about it)
+    int locked = -1;
+    if (b.lockTranslation.sum() == 1)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            if
+            (
+                b.lockTranslation[k]
+             && b.lockRotation[(k + 1) % 3] && b.lockRotation[(k + 2) % 3]
+            )
+            {
+                locked = k;
+            }
+        }
+    }
+    if (locked >= 0 && !surface.points.empty())
+    {
+        const vec3 e = b.pose.vectorToBody(vec3::Unit(locked));
+        scalar lo = GREAT, hi = -GREAT, R2 = 0;
+        for (const vec3& p : surface.points)
+        {
+            const scalar z = p.dot(e);
+            lo = min(lo, z);
+            hi = max(hi, z);
+            R2 = max(R2, (p - z*e).squaredNorm());
+        }
+        if (hi > lo)
+        {
+            s.depth = hi - lo;
+            const scalar section = s.volume/s.depth;
+            s.volume = section;
+            s.area = max(area - 2*section, scalar(0))/s.depth;
+            s.circumscribedRadius = std::sqrt(R2);
+        }
+    }
+    sized_[i] = true;
+    return s;
+}
+
+
 void Foam::immersedFluidCoupling::fluidLoads
 (
     const immersedBoundaryProjection& projection,
@@ -359,56 +437,93 @@ void Foam::immersedFluidCoupling::fluidLoads
     const settings& s
 )
 {
-    const scalar rho = s.rho, Ca = s.Ca;
-    const bool measure = s.measure;
-    using impact = settings::impact;
+    const scalar rho = s.rho;
     const clockTime timer;
     setInnerMomentum(projection, dem, U);
     List<vector> P, PM, M, L;
     fluidSums(projection, dem, U, deltaT, P, PM, M, L);
     auto& bodies = dem.bodies();
     // Bodies in contact at the end of the last DEM step (pairs with a
-    // contact history). They keep the damper (fluidLoad.H); with
-    // impactInertia the others (yes), or those that had one impact
-    // (isolated), carry their added mass as inertia, so that an impact
-    // within the next step keeps its rebound
+    // contact history)
     List<bool> inContact(bodies.size(), false);
     for (const auto& p : dem.pairsInContact())
     {
         if (p.first < inContact.size()) inContact[p.first] = true;
         if (p.second < inContact.size()) inContact[p.second] = true;
     }
+    // The bodies' volume-equivalent radii (in 2D of their sections), and
+    // the others within reach of a body's shell, for its solid fraction
+    const label n = bodies.size();
+    List<scalar> equivalentRadius(n, scalar(0));
+    forAll(equivalentRadius, j)
+    {
+        if (dem.isWall(j)) continue;
+        const fluidImpedance::bodySize& sj = sizeOf(dem, j);
+        equivalentRadius[j] = sj.depth > 0
+            ? std::sqrt(sj.volume/constant::mathematical::pi)
+            : std::cbrt(3*sj.volume/(4*constant::mathematical::pi));
+    }
+    std::vector<std::pair<double, double>> near;
+    auto neighbours = [&](const label i) -> const std::vector<std::pair<double, double>>&
+    {
+        near.clear();
+        const vec3& xi = bodies[i].pose.position();
+        for (label j = 0; j < n; ++j)
+        {
+            if (j == i || dem.isWall(j)) continue;
+            const double d = (bodies[j].pose.position() - xi).norm();
+            if (d < 2*equivalentRadius[i] + equivalentRadius[j])
+            {
+                near.emplace_back(d, equivalentRadius[j]);
+            }
+        }
+        return near;
+    };
     forAll(M, i)
     {
         if (dem.isWall(i)) continue;
         rigidBody& b = bodies[i];
         const scalar Vb = b.geometry->volume();
+        // The fluid's time scheme: second order from the second step of a
+        // body's history on (OpenFOAM's backward is Euler in its first)
+        const bool second = s.backward && history_[i] >= 1 && previousDeltaT_ > 0;
+        const immersedForcing::timeDerivative ddt = second
+            ? immersedForcing::timeDerivative::backward(deltaT, previousDeltaT_)
+            : immersedForcing::timeDerivative::euler(deltaT);
+        const vec3 innerRate =
+            ddt.of(c(M[i]), c(innerMomentum_[i]), c(innerMomentum0_[i]));
+        const vec3 innerAngularRate =
+            ddt.of(c(L[i]), c(innerAngularMomentum_[i]), c(innerAngularMomentum0_[i]));
         const vec3 F = immersedForcing::fluidForce
         (
-            rho, c(P[i]), c(M[i]), c(innerMomentum_[i]), deltaT, Vb,
-            dem.settings().gravity
+            rho, c(P[i]), innerRate, Vb, dem.settings().gravity
         );
-        const vec3 T = immersedForcing::fluidTorque
-        (
-            rho, c(PM[i]), c(L[i]), c(innerAngularMomentum_[i]), deltaT
-        );
+        const vec3 T = immersedForcing::fluidTorque(rho, c(PM[i]), innerAngularRate);
         if (debug)
         {
             Info<< "immersedFluidCoupling loads " << word(b.name)
                 << " t " << U.time().value()
                 << " penalty " << rho*P[i]
-                << " innerRate " << rho*(M[i] - innerMomentum_[i])/deltaT
+                << " innerRate " << v(rho*innerRate)
                 << " v " << v(b.velocity) << endl;
         }
-        // The stabilisation's added mass and moment of inertia (the mean
-        // principal moment): Ca's, or the measured ones when larger
-        // (at most those of the keyword's largest Ca, 100)
+        // The fluid's answer to a change of motion over the next step
+        // (fluidImpedance.H), with the added mass the other bodies around
+        // confine
+        fluidImpedance::bodySize size = sizeOf(dem, i);
+        size.cellSize = b.fluidCellSize;
+        size.solidFraction = fluidImpedance::surroundingFraction
+        (
+            equivalentRadius[i], neighbours(i), size.depth > 0
+        );
+        fluidImpedance::coefficients z =
+            fluidImpedance::estimate(size, rho, s.nu, deltaT);
+        // The added mass the fluid solver shows (the change of force
+        // against the change of acceleration; measuredAddedMass), for the
+        // contact rule below. The smallest change of acceleration worth
+        // measuring: 1e-2 m/s2, over the body's size for rotation
         const scalar unitMass = rho*Vb;
         const scalar unitInertia = rho/b.density*b.inertia().sum()/3;
-        scalar ma = Ca*unitMass;
-        scalar Ia = Ca*unitInertia;
-        // The smallest change of acceleration worth measuring: 1e-2 m/s2,
-        // over the body's size for rotation
         const scalar aFloor = 1e-2;
         addedMass_[i].record
         (
@@ -419,139 +534,102 @@ void Foam::immersedFluidCoupling::fluidLoads
             T, (b.angularVelocity - c(previousAngularVelocity_[i]))/deltaT,
             sqr(aFloor)/pow(Vb, 2.0/3.0)
         );
-        // Inertia over this step (see settings::impact). A body carrying
-        // its added mass as inertia takes M only from changes of force
-        // that follow its changes of acceleration (measuredAddedMass: the
-        // force noise of a resolved sphere read as M would carry its
-        // bounce on)
-        bool inertia =
-            !inContact[i]
-         && (
-                s.impactInertia == impact::yes
-             || (
-                    s.impactInertia == impact::isolated
-                 && isolatedImpact(recentContacts_[i])
-                )
-            );
-        if (measure)
-        {
-            const scalar cap = 100;
-            ma = addedMass_[i].stabilisation
-            (
-                b.mass(), ma, cap*unitMass,
-                inertia || s.impactInertia == impact::yes
-            );
-            Ia = addedInertia_[i].stabilisation
-            (
-                b.inertia().sum()/3, Ia, cap*unitInertia
-            );
-            noteAddedMass(i, ma/unitMass, Ca, b.name);
-        }
-        // A body that landed within the step (in contact now, free of
-        // contacts at the last step's end) changed its velocity by an
-        // impact, which does not go on: its course is not extrapolated
-        // from it (zero reference accelerations). Extrapolated, the
-        // landing's deceleration became a course upwards, and the damper
-        // pulled the body off what it had landed on (src/README.md,
-        // coupling). A body leaving a contact keeps its reference (with
-        // impactInertia yes, m_a a_ref meets the fluid's answer to the
-        // push). With isolated: the nominal Ca rho V as inertia where
-        // that is stable (r = (Ca rho V - M)/(m + Ca rho V) > -1: the
-        // measured M within m + 2 Ca rho V; two cubes 0.1 mm apart in a
-        // viscous oil blew up without this), and a body leaving a contact
-        // carries nothing of its push-off on (zero reference
-        // acceleration: its m_a a_ref kept a pellet leaving a bed
-        // accelerating against the fluid; src/README.md, coupling)
-        bool fresh = inContact[i] && !previousContact_[i];
-        scalar inertiaMass = ma;
-        if (inertia && s.impactInertia == impact::isolated)
-        {
-            inertiaMass = Ca*unitMass;
-            if (ma > b.mass() + 2*inertiaMass)
-            {
-                inertia = false;
-            }
-            else
-            {
-                fresh = fresh || previousContact_[i];
-            }
-        }
-        b.fluid = fluidLoad::stabilised
+        // The body goes on from its course of the last step (reference
+        // accelerations from it, as the fluid's scheme saw them: second
+        // order once its velocity two steps back is known)
+        const immersedForcing::timeDerivative dv =
+            second && history_[i] >= 2
+          ? ddt : immersedForcing::timeDerivative::euler(deltaT);
+        vec3 a =
+            dv.of(b.velocity, c(previousVelocity_[i]), c(previousVelocity0_[i]));
+        vec3 alpha = dv.of
         (
-            F, T, inertia ? inertiaMass : ma, Ca*unitMass, inertia, Ia,
-            deltaT, dem.time(),
-            b.velocity, fresh ? b.velocity : c(previousVelocity_[i]),
             b.angularVelocity,
-            fresh ? b.angularVelocity : c(previousAngularVelocity_[i])
+            c(previousAngularVelocity_[i]),
+            c(previousAngularVelocity0_[i])
         );
-        previousContact_[i] = inContact[i];
+        // Which rule: a body in a bed (in contact now, or with contacts in
+        // more than one of the last CFD steps, or in two apart) takes the
+        // contact rule; a free body the implicit coupling, unless the
+        // fluid solver's significant answer exceeds its stable range
+        // (M > m + 2 m_hat: fluidImpedance.H)
+        const scalar cap = 100;
+        bool held = inContact[i] || !isolatedImpact(recentContacts_[i]);
+        if
+        (
+            !held
+         && addedMass_[i].value(true) > b.mass() + 2*z.addedMass
+         && z.addedMass < cap*unitMass
+        )
+        {
+            held = true;
+        }
+        if (held)
+        {
+            // The contact rule. The body moves within the step by its
+            // contacts, far faster than the fluid can answer, and its
+            // velocity at the step's end is a sample of that motion: no
+            // added mass carries it on. The damper m_a/deltaT (I_a/deltaT)
+            // on its departure from the course extrapolated from the last
+            // steps takes the fluid's answer to it within the step, m_a the
+            // larger of rho V and the measured answer (the answer among
+            // touching bodies exceeds any per-body estimate), and lets a
+            // body at rest on a wall or in a bed stay at rest. A body that
+            // landed within the step (in contact now, free at the step
+            // before) changed its velocity by an impact, which does not go
+            // on: its course is not extrapolated from it
+            const scalar ma =
+                addedMass_[i].stabilisation(b.mass(), unitMass, cap*unitMass);
+            const scalar Ia = addedInertia_[i].stabilisation
+            (
+                b.inertia().sum()/3, unitInertia, cap*unitInertia
+            );
+            if (inContact[i] && !wasInContact_[i])
+            {
+                a = vec3::Zero();
+                alpha = vec3::Zero();
+            }
+            b.fluid = fluidLoad::held
+            (
+                F, T, ma, Ia, std::min(z.nominalAddedMass, ma), deltaT,
+                dem.time(), b.velocity, a, b.angularVelocity, alpha
+            );
+        }
+        else
+        {
+            // The implicit coupling: the added mass carries the course on
+            // and meets the fluid's answer to it, -m_a a; a bounce within
+            // the step keeps its rebound
+            b.fluid = fluidLoad::coupled
+            (
+                F, T, z, dem.time(), b.velocity, a, b.angularVelocity, alpha
+            );
+        }
+        if (debug)
+        {
+            Info<< "IFC " << word(b.name) << " t " << U.time().value()
+                << " dt " << deltaT
+                << " F " << v(F) << " T " << v(T)
+                << " v " << v(b.velocity) << " w " << v(b.angularVelocity)
+                << " a " << v(a)
+                << " m " << b.mass() << " mhat " << z.addedMass
+                << " c " << z.damping << " phi " << size.solidFraction
+                << " con " << inContact[i] << wasInContact_[i]
+                << " held " << held << " M " << addedMass_[i].value() << endl;
+        }
+        previousVelocity0_[i] = previousVelocity_[i];
+        previousAngularVelocity0_[i] = previousAngularVelocity_[i];
         previousVelocity_[i] = v(b.velocity);
         previousAngularVelocity_[i] = v(b.angularVelocity);
+        innerMomentum0_[i] = innerMomentum_[i];
+        innerAngularMomentum0_[i] = innerAngularMomentum_[i];
         innerMomentum_[i] = M[i];
         innerAngularMomentum_[i] = L[i];
+        ++history_[i];
+        wasInContact_[i] = inContact[i];
     }
-    reportAddedMass(Ca, U.time().value());
+    previousDeltaT_ = deltaT;
     seconds_ += timer.elapsedTime();
-}
-
-
-bool Foam::immersedFluidCoupling::isolatedImpact(const label steps)
-{
-    // One step with contacts, or two in a row (an impact across the end
-    // of a step: at 16 cells per diameter the wet bounce's contact often
-    // is): one run of set bits, at most two long
-    const std::bitset<32> b(steps);
-    const std::bitset<32> runStarts(steps & ~(steps >> 1));
-    return b.count() <= 1 || (b.count() == 2 && runStarts.count() == 1);
-}
-
-
-void Foam::immersedFluidCoupling::noteContacts(demSolver& dem)
-{
-    const std::vector<char>& touched = dem.touched();
-    forAll(recentContacts_, i)
-    {
-        const bool t = size_t(i) < touched.size() && touched[i];
-        recentContacts_[i] = ((recentContacts_[i] << 1) | label(t)) & allSteps;
-    }
-    dem.clearTouched();
-}
-
-
-void Foam::immersedFluidCoupling::noteAddedMass
-(
-    const label i,
-    const scalar coefficient,
-    const scalar Ca,
-    const word& name
-)
-{
-    if (coefficient <= Ca || coefficient < 2*reportedAddedMass_[i])
-    {
-        return;
-    }
-    reportedAddedMass_[i] = coefficient;
-    ++raised_;
-    if (coefficient > largestRaised_)
-    {
-        largestRaised_ = coefficient;
-        largestRaisedBody_ = name;
-    }
-}
-
-
-void Foam::immersedFluidCoupling::reportAddedMass(const scalar Ca, const scalar t)
-{
-    if (raised_ > 0)
-    {
-        Info<< "immersedDEM: t = " << t << ": the fluid solver's added mass"
-            << " measured above addedMassCoefficient " << Ca
-            << " rho V (and twice the last reported) for " << raised_
-            << " bodies, largest " << largestRaised_ << " rho V ("
-            << largestRaisedBody_ << "); their stabilisation uses it" << endl;
-    }
-    raised_ = 0;
-    largestRaised_ = 0;
 }
 
 
@@ -583,13 +661,19 @@ void Foam::immersedFluidCoupling::bodiesChanged
     };
     remap(innerMomentum_, vector::zero);
     remap(innerAngularMomentum_, vector::zero);
+    remap(innerMomentum0_, vector::zero);
+    remap(innerAngularMomentum0_, vector::zero);
     remap(previousVelocity_, vector::zero);
     remap(previousAngularVelocity_, vector::zero);
+    remap(previousVelocity0_, vector::zero);
+    remap(previousAngularVelocity0_, vector::zero);
+    remap(history_, label(0));
+    remap(wasInContact_, false);
+    remap(recentContacts_, allSteps);
     remap(addedMass_, measuredAddedMass());
     remap(addedInertia_, measuredAddedMass());
-    remap(reportedAddedMass_, scalar(0));
-    remap(previousContact_, false);
-    remap(recentContacts_, allSteps);
+    remap(sizes_, fluidImpedance::bodySize());
+    remap(sized_, false);
     for (label i = firstNew; i < n; ++i)
     {
         previousVelocity_[i] = v(dem.bodies()[i].velocity);
@@ -626,7 +710,13 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
     os.writeEntry("previousAngularVelocity", previousAngularVelocity_[i]);
     os.writeEntry("innerMomentum", innerMomentum_[i]);
     os.writeEntry("innerAngularMomentum", innerAngularMomentum_[i]);
-    os.writeEntry("inContact", previousContact_[i]);
+    os.writeEntry("previousVelocity0", previousVelocity0_[i]);
+    os.writeEntry("previousAngularVelocity0", previousAngularVelocity0_[i]);
+    os.writeEntry("innerMomentum0", innerMomentum0_[i]);
+    os.writeEntry("innerAngularMomentum0", innerAngularMomentum0_[i]);
+    os.writeEntry("history", history_[i]);
+    os.writeEntry("previousDeltaT", previousDeltaT_);
+    os.writeEntry("inContact", wasInContact_[i]);
     os.writeEntry("recentContacts", recentContacts_[i]);
     measuredAddedMass::fields(addedMass_[i], measuredWriter{os, "addedMass"});
     measuredAddedMass::fields(addedInertia_[i], measuredWriter{os, "addedInertia"});
@@ -640,15 +730,45 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
     innerMomentum_[i] = d.get<vector>("innerMomentum");
     innerAngularMomentum_[i] = d.get<vector>("innerAngularMomentum");
     innerMomentumSet_ = true;
-    // Restart files written before it have none: in contact (the
-    // extrapolation kept, as it was before)
-    previousContact_[i] = d.getOrDefault<bool>("inContact", true);
+    // (written before the second-order history: a history of one step,
+    // first order at the next)
+    previousVelocity0_[i] = d.getOrDefault<vector>("previousVelocity0", previousVelocity_[i]);
+    previousAngularVelocity0_[i] =
+        d.getOrDefault<vector>("previousAngularVelocity0", previousAngularVelocity_[i]);
+    innerMomentum0_[i] = d.getOrDefault<vector>("innerMomentum0", innerMomentum_[i]);
+    innerAngularMomentum0_[i] =
+        d.getOrDefault<vector>("innerAngularMomentum0", innerAngularMomentum_[i]);
+    history_[i] = d.getOrDefault<label>("history", 0);
+    previousDeltaT_ = max(previousDeltaT_, d.getOrDefault<scalar>("previousDeltaT", 0));
+    wasInContact_[i] = d.getOrDefault<bool>("inContact", true);
     // (written before it: as a new body)
     recentContacts_[i] = d.getOrDefault<label>("recentContacts", allSteps);
-    // Restart files written before the measurement have none: it starts
-    // again from nothing
+    // (written before the measurement: it starts again from nothing)
     addedMass_[i].reset();
     addedInertia_[i].reset();
     measuredAddedMass::fields(addedMass_[i], measuredReader{d, "addedMass"});
     measuredAddedMass::fields(addedInertia_[i], measuredReader{d, "addedInertia"});
+}
+
+
+bool Foam::immersedFluidCoupling::isolatedImpact(const label steps)
+{
+    // One step with contacts, or two in a row (an impact across the end
+    // of a step: at 16 cells per diameter the wet bounce's contact often
+    // is): one run of set bits, at most two long
+    const std::bitset<32> b(steps);
+    const std::bitset<32> runStarts(steps & ~(steps >> 1));
+    return b.count() <= 1 || (b.count() == 2 && runStarts.count() == 1);
+}
+
+
+void Foam::immersedFluidCoupling::noteContacts(demSolver& dem)
+{
+    const std::vector<char>& touched = dem.touched();
+    forAll(recentContacts_, i)
+    {
+        const bool t = size_t(i) < touched.size() && touched[i];
+        recentContacts_[i] = ((recentContacts_[i] << 1) | label(t)) & allSteps;
+    }
+    dem.clearTouched();
 }

@@ -36,18 +36,35 @@ double wallShearCoefficient
 }
 
 
+timeDerivative timeDerivative::euler(const double deltaT)
+{
+    timeDerivative d;
+    d.deltaT = deltaT;
+    return d;
+}
+
+
+timeDerivative timeDerivative::backward(const double deltaT, const double deltaT0)
+{
+    timeDerivative d;
+    d.deltaT = deltaT;
+    d.c = 1 + deltaT/(deltaT + deltaT0);
+    d.c00 = deltaT*deltaT/(deltaT0*(deltaT + deltaT0));
+    d.c0 = d.c + d.c00;
+    return d;
+}
+
+
 vec3 fluidForce
 (
     const double rho,
     const vec3& P,
-    const vec3& M,
-    const vec3& M0,
-    const double deltaT,
+    const vec3& innerRate,
     const double volume,
     const vec3& g
 )
 {
-    return rho*(P + (M - M0)/deltaT) - rho*volume*g;
+    return rho*(P + innerRate) - rho*volume*g;
 }
 
 
@@ -55,12 +72,10 @@ vec3 fluidTorque
 (
     const double rho,
     const vec3& PM,
-    const vec3& L,
-    const vec3& L0,
-    const double deltaT
+    const vec3& innerAngularRate
 )
 {
-    return rho*(PM + (L - L0)/deltaT);
+    return rho*(PM + innerAngularRate);
 }
 
 } // End namespace immersedForcing

@@ -1,42 +1,66 @@
 #include "fluidLoad.H"
 
+#include <algorithm>
+
 namespace immersedDEM
 {
 
-fluidLoad fluidLoad::stabilised
+fluidLoad fluidLoad::coupled
 (
     const vec3& F,
     const vec3& T,
-    const double addedMass,
-    const double nominalAddedMass,
-    const bool inertia,
-    const double addedInertia,
-    const double deltaT,
+    const fluidImpedance::coefficients& z,
     const double t,
     const vec3& v,
-    const vec3& vPrevious,
+    const vec3& a,
     const vec3& w,
-    const vec3& wPrevious
+    const vec3& alpha
 )
 {
     fluidLoad l;
     l.force = F;
-    if (inertia)
-    {
-        l.addedMass = addedMass;
-        l.nominalAddedMass = nominalAddedMass;
-    }
-    else
-    {
-        l.damping = addedMass/deltaT;
-    }
-    l.referenceVelocity = v;
-    l.referenceAcceleration = (v - vPrevious)/deltaT;
-    l.referenceTime = t;
     l.torque = T;
-    l.angularDamping = addedInertia/deltaT;
+    l.addedMass = z.addedMass;
+    l.nominalAddedMass = std::min(z.nominalAddedMass, z.addedMass);
+    l.damping = z.damping;
+    l.addedInertia = z.addedInertia;
+    l.angularDamping = z.angularDamping;
+    l.referenceVelocity = v;
+    l.referenceAcceleration = a;
+    l.referenceTime = t;
     l.referenceAngularVelocity = w;
-    l.referenceAngularAcceleration = (w - wPrevious)/deltaT;
+    l.referenceAngularAcceleration = alpha;
+    return l;
+}
+
+
+fluidLoad fluidLoad::held
+(
+    const vec3& F,
+    const vec3& T,
+    const double addedMass,
+    const double addedInertia,
+    const double nominalAddedMass,
+    const double deltaT,
+    const double t,
+    const vec3& v,
+    const vec3& a,
+    const vec3& w,
+    const vec3& alpha
+)
+{
+    fluidLoad l;
+    l.force = F;
+    l.torque = T;
+    l.damping = addedMass/deltaT;
+    l.angularDamping = addedInertia/deltaT;
+    l.nominalAddedMass = nominalAddedMass;
+    l.courseExtrapolated = 1;
+    l.referenceVelocity = v;
+    l.referenceAcceleration = a;
+    l.referenceTime = t;
+    l.referenceAngularVelocity = w;
+    l.referenceAngularAcceleration = alpha;
     return l;
 }
 

@@ -119,12 +119,19 @@ __attribute__((noinline)) void kickLocked(rigidBody& b, const vec3& T, double ha
     const mat3 Iw = b.worldInertia();
     smallMatrix Iff(nFree, nFree);
     smallVector rhs(nFree);
+    // The fluid's added moment of inertia and its damper, implicit
+    // (fluidLoad.H): (I_ff + I_a + h c) dw = h T_f
+    const double Ia = b.fluid.addedInertia + halfDt*b.fluid.angularDamping;
     for (int a = 0; a < nFree; ++a)
     {
         rhs[a] = T[freeAxes[a]]*halfDt;
         for (int c = 0; c < nFree; ++c)
         {
             Iff(a, c) = Iw(freeAxes[a], freeAxes[c]);
+        }
+        if (Ia > 0)
+        {
+            Iff(a, a) += Ia;
         }
     }
     const smallVector dw = Iff.ldlt().solve(rhs);
@@ -146,11 +153,19 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // Translation
 
-    // The added mass, where it is inertia (fluidLoad.H); 0 without a
-    // fluid or with the damper
-    const double ma = b.fluid.addedMass;
+    // The fluid's added mass m_a and damper c (fluidLoad.H; both 0
+    // without a fluid), the damper implicit: the force is taken at the
+    // velocity after the kick, F - c (v_new - v), stable for any c/m.
+    // With a contact force in this sub-step the body moves with its own
+    // added mass (an impact is far faster than the fluid's answer); the
+    // term m_a a_ref, which cancels the fluid's answer to the last step's
+    // acceleration held in its force, stays whole. A body under the
+    // contact rule has no added mass as inertia (0 in both)
+    const double ma =
+        b.contactForce.isZero() ? b.fluid.addedMass : b.fluid.nominalAddedMass;
     b.velocity +=
-        (b.totalForce() + b.fluid.inertialForce())*(halfDt/(b.mass() + ma));
+        (b.totalForce() + b.fluid.inertialForce())
+       *(halfDt/(b.mass() + ma + halfDt*b.fluid.damping));
     for (int k = 0; k < 3; ++k)
     {
         if (b.lockTranslation[k])
@@ -161,8 +176,30 @@ void rigidBodyIntegrator::kick(rigidBody& b, double halfDt)
 
     // Rotation
 
-    const vec3 T = b.totalTorque();
     const vec3 I = b.inertia();
+
+    if (b.fluid.addedInertia > 0 || b.fluid.angularDamping > 0)
+    {
+        const vec3 T = b.totalTorque() + b.fluid.inertialTorque();
+        if (!b.lockRotation.isZero())
+        {
+            kickLocked(b, T, halfDt);
+            return;
+        }
+        // Per principal axis (I_k + I_a + h c) dw_k = h T_k: the added
+        // moment is isotropic, the damper's torque taken after the kick
+        const double extra =
+            b.fluid.addedInertia + halfDt*b.fluid.angularDamping;
+        const vec3 dwBody =
+            (b.pose.vectorToBody(T)*halfDt).cwiseQuotient
+            (
+                I + vec3::Constant(extra)
+            );
+        b.angularVelocity += b.pose.vectorToWorld(dwBody);
+        return;
+    }
+
+    const vec3 T = b.totalTorque();
 
     if (b.lockRotation.isZero())
     {

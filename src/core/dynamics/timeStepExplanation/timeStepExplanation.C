@@ -128,7 +128,7 @@ std::string timeStepExplanation::choice(const demSolver::stepChoice& c)
         else if (!c.nameA.empty())
         {
             os  << "; 1/500 of the relaxation time of body " << c.nameA
-                << " under the fluid's damping, m/c = " << c.relaxation << " s";
+                << " under the fluid's damping, (m + m_a)/c = " << c.relaxation << " s";
         }
         os  << ")";
     }

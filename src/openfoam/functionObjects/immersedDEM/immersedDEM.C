@@ -173,13 +173,16 @@ void Foam::functionObjects::immersedDEM::checkRun(const scalar deltaT)
     forAll(bodies, i)
     {
         if (state_.dem().isWall(i)) continue;
-        const scalar v = bodies[i].velocity.norm();
+        // (its surface's fastest point: spin counts)
+        const scalar v =
+            bodies[i].velocity.norm()
+          + bodies[i].angularVelocity.norm()*bodies[i].geometry->boundingRadius();
         if (!(v <= bound))
         {
             FatalErrorInFunction
                 << "Function object " << name() << ", time " << time_.timeName()
                 << ": body '" << bodies[i].name.c_str() << "' moves at " << v
-                << " m/s, more than 100 times the case's speed scale "
+                << " m/s (abs(v) + abs(omega) r), more than 100 times the case's speed scale "
                 << referenceSpeed_ << " m/s (the largest of the fluid's and"
                 << " the bodies' speeds at the start and of a free fall over"
                 << " the mesh): the run has gone bad. See the log above for"
@@ -199,7 +202,6 @@ Foam::functionObjects::immersedDEM::immersedDEM
     fvMeshFunctionObject(name, runTime, dict),
     state_(immersedDEMState::New(mesh_)),
     rhoInf_(0),
-    Ca_(1),
     UName_("U")
 {
     summary_.reset(new ::immersedDEM::runSummary());
@@ -252,24 +254,64 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
         {
             "type", "libs", "enabled", "log", "region", "timeStart", "timeEnd",
             "executeControl", "executeInterval", "writeControl", "writeInterval",
-            "rhoInf", "U", "addedMassCoefficient", "measureAddedMass", "impactInertia", "maxSubSteps",
-            "writeContacts", "maxBodyCourant"
+            "rhoInf", "U", "nu", "maxFourier", "maxSubSteps", "writeContacts",
+            "maxBodyCourant",
+            // (the former stabilisation's: an error below that says so)
+            "addedMassCoefficient", "measureAddedMass", "impactInertia"
         }
     );
+    for (const word old : {"addedMassCoefficient", "measureAddedMass", "impactInertia"})
+    {
+        if (dict.found(old))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Keyword '" << old << "' in " << dict.name()
+                << " belonged to the explicit coupling's stabilisation, which"
+                << " is gone: the coupling now takes the fluid's answer to a"
+                << " body's change of motion implicitly and needs no setting"
+                << " (src/core/coupling/fluidImpedance). Remove the keyword"
+                << nl << exit(FatalIOError);
+        }
+    }
     contactsEverySubStep_ =
         immersedDEMChecks::oneOfOrDefault(dict, "writeContacts", {"step", "subStep"}, "step") == "subStep";
     maxSubSteps_ = immersedDEMChecks::positiveOrDefault(dict, "maxSubSteps", 1e5);
     maxBodyCourant_ = immersedDEMChecks::positiveOrDefault(dict, "maxBodyCourant", 1);
+    maxFourier_ = immersedDEMChecks::inRangeOrDefault(dict, "maxFourier", 0, 1e6, 4);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
-    Ca_ = immersedDEMChecks::inRangeOrDefault(dict, "addedMassCoefficient", 0, 100, 1);
-    measureAddedMass_ = dict.getOrDefault<Switch>("measureAddedMass", true);
-    impactInertia_ = immersedDEMChecks::oneOfOrDefault
-    (
-        dict, "impactInertia", {"isolated", "yes", "no"}, "isolated"
-    );
     UName_ = dict.getOrDefault<word>("U", "U");
+    readViscosity(dict);
     setViscosity();
     return true;
+}
+
+
+void Foam::functionObjects::immersedDEM::readViscosity(const dictionary& dict)
+{
+    // The fluid's kinematic viscosity: the keyword, or the solver's
+    // laminar nu (singlePhaseTransportModel)
+    if (dict.found("nu"))
+    {
+        nu_ = immersedDEMChecks::positive(dict, "nu");
+        return;
+    }
+    const word transport("transportProperties");
+    const IOdictionary* t = mesh_.findObject<IOdictionary>(transport);
+    if (!t || !t->found("nu"))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Function object " << name() << ": the coupling needs the"
+            << " fluid's kinematic viscosity, and this solver has no 'nu' in"
+            << " constant/" << transport << ". Give it as 'nu' in "
+            << dict.name() << nl << exit(FatalIOError);
+    }
+    nu_ = dimensionedScalar("nu", dimViscosity, *t).value();
+    if (!(nu_ > 0))
+    {
+        FatalIOErrorInFunction(*t)
+            << "Keyword 'nu' in " << t->objectPath() << " is " << nu_
+            << ": it must be > 0" << nl << exit(FatalIOError);
+    }
 }
 
 
@@ -282,25 +324,7 @@ void Foam::functionObjects::immersedDEM::setViscosity()
         state_.dem().setFluidViscosity(0);
         return;
     }
-    const word transport("transportProperties");
-    const IOdictionary* t = mesh_.findObject<IOdictionary>(transport);
-    if (!t || !t->found("nu"))
-    {
-        FatalErrorInFunction
-            << "Function object " << name() << ": the lubrication of "
-            << state_.properties().objectPath() << " needs the fluid's"
-            << " kinematic viscosity 'nu' in constant/" << transport
-            << " (not loaded by this solver, or no 'nu' there); switch it"
-            << " off with lubrication { active no; } there" << exit(FatalError);
-    }
-    const scalar nu = dimensionedScalar("nu", dimViscosity, *t).value();
-    if (!(nu > 0))
-    {
-        FatalIOErrorInFunction(*t)
-            << "Keyword 'nu' in " << t->objectPath() << " is " << nu
-            << ": it must be > 0" << nl << exit(FatalIOError);
-    }
-    state_.dem().setFluidViscosity(rhoInf_*nu);
+    state_.dem().setFluidViscosity(rhoInf_*nu_);
 }
 
 
@@ -321,16 +345,11 @@ bool Foam::functionObjects::immersedDEM::execute()
                 << UName_ << "' (keyword U in system/controlDict)"
                 << exit(FatalError);
         }
-        using impact = immersedFluidCoupling::settings::impact;
-        state_.fluidLoads
-        (
-            *U, deltaT,
-            {
-                rhoInf_, Ca_, measureAddedMass_,
-                impactInertia_ == "yes" ? impact::yes
-              : impactInertia_ == "no" ? impact::no : impact::isolated
-            }
-        );
+        // The velocity's time scheme (backward: second order)
+        const bool backward =
+            word(mesh_.ddtScheme("ddt(" + UName_ + ')')[0].wordToken())
+         == "backward";
+        state_.fluidLoads(*U, deltaT, {rhoInf_, nu_, backward});
     }
     else if (!warnedNoForcing_)
     {
@@ -427,6 +446,23 @@ bool Foam::functionObjects::immersedDEM::execute()
     checkBodies(deltaT);
     // (again after the DEM: before the fluid's next step sees the bodies)
     checkRun(deltaT);
+    const scalar fourierDeltaT = reportedFourier_ ? GREAT : fourierStep();
+    if
+    (
+        fourierDeltaT < deltaT
+     && !time_.controlDict().getOrDefault<bool>("adjustTimeStep", false)
+    )
+    {
+        WarningInFunction
+            << "Function object " << name() << ", time " << time_.timeName()
+            << ": the CFD step " << deltaT << " s is above the step "
+            << fourierDeltaT << " s at which the bodies' viscous Fourier"
+            << " number nu deltaT/h^2 is maxFourier " << maxFourier_
+            << ": the solver's correctors may not converge the fluid's"
+            << " answer to the bodies, and a free body can be thrown off."
+            << " Reduce deltaT (or use adjustTimeStep, which caps it)" << endl;
+        reportedFourier_ = true;
+    }
 
     scalar largest = 0;
     for (const auto& c : state_.dem().contacts())
@@ -460,6 +496,63 @@ bool Foam::functionObjects::immersedDEM::execute()
             output_->writeContacts(time_.value(), state_.dem());
         }
         outputSeconds_ += outputTimer.elapsedTime();
+    }
+    return true;
+}
+
+
+Foam::scalar Foam::functionObjects::immersedDEM::fourierStep() const
+{
+    // The largest CFD step at maxFourier over the free bodies in the
+    // mesh (their smallest covered cell, checkBodies)
+    scalar cap = GREAT;
+    if (!(maxFourier_ > 0) || !(nu_ > 0) || !state_.projection().forcingRegistered())
+    {
+        return cap;
+    }
+    // (the cells' size in the plane of a 2D mesh: cube roots of the
+    // volumes are cells of the slab's depth)
+    scalar depth = 0;
+    if (mesh_.nSolutionD() == 2)
+    {
+        const Vector<label>& d = mesh_.solutionD();
+        for (direction k = 0; k < 3; ++k)
+        {
+            if (d[k] < 0) depth = mesh_.bounds().span()[k];
+        }
+    }
+    const auto& bodies = state_.dem().bodies();
+    forAll(bodies, i)
+    {
+        scalar h = bodies[i].fluidCellSize;
+        if (depth > 0)
+        {
+            h = sqrt(h*h*h/depth);
+        }
+        if (bodies[i].dynamic() && h > 0)
+        {
+            cap = min(cap, maxFourier_*h*h/nu_);
+        }
+    }
+    return cap;
+}
+
+
+bool Foam::functionObjects::immersedDEM::adjustTimeStep()
+{
+    const scalar cap = fourierStep();
+    if (cap < time_.deltaTValue())
+    {
+        const_cast<Time&>(time_).setDeltaT(cap, false);
+        if (!reportedFourier_)
+        {
+            Info<< type() << ' ' << name() << ": the CFD step is capped at "
+                << cap << " s, where the bodies' viscous Fourier number"
+                << " nu deltaT/h^2 is maxFourier " << maxFourier_
+                << " (the solver's correctors converge the fluid's answer to"
+                << " a body's motion below it)" << endl;
+            reportedFourier_ = true;
+        }
     }
     return true;
 }
