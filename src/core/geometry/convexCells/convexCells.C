@@ -14,7 +14,10 @@ namespace
 
 //- The convex polyhedra of a shape the plane path serves: the shape's own,
 //  or its pieces' with their frames in the body's; empty when it is none
-std::vector<std::pair<const convexPolyhedron*, bodyPose>> polyhedraOf(const shape& s)
+std::vector<std::pair<const convexPolyhedron*, bodyPose>> polyhedraOf
+(
+    const shape& s, const bool piecesToo = true
+)
 {
     std::vector<std::pair<const convexPolyhedron*, bodyPose>> out;
     const triangleMeshShape* m = shapeAs<triangleMeshShape>(s);
@@ -27,6 +30,7 @@ std::vector<std::pair<const convexPolyhedron*, bodyPose>> polyhedraOf(const shap
         }
         return out;
     }
+    if (!piecesToo) return out;
     for (const auto& p : m->pieces())
     {
         const convexPolyhedron* P = p->convex();
@@ -174,9 +178,9 @@ double clippedVolumeOf(const polygons& X, const vec3& n, double t, double onPlan
 } // End anonymous namespace
 
 
-bool convexCells::handles(const shape& s)
+bool convexCells::handles(const shape& s, const bool piecesToo)
 {
-    return !polyhedraOf(s).empty();
+    return !polyhedraOf(s, piecesToo).empty();
 }
 
 
