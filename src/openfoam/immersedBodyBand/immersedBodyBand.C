@@ -179,6 +179,7 @@ std::vector<narrowBand::value> Foam::immersedBodyBand::bandOf
     const rigidBody& b,
     const label bi,
     const labelList& cand,
+    const bodyPose& pose,
     const bodyPose* lastPose
 )
 {
@@ -201,9 +202,9 @@ std::vector<narrowBand::value> Foam::immersedBodyBand::bandOf
         scalar R = 0;
         for (const label celli : cand)
         {
-            R = max(R, mag(C[celli] - v(b.pose.position())));
+            R = max(R, mag(C[celli] - v(pose.position())));
         }
-        m = pairFilter::motionBound(*lastPose, b.pose, R);
+        m = pairFilter::motionBound(*lastPose, pose, R);
     }
 
     // Settled from the last band, or queried: one by one where the cell
@@ -236,7 +237,7 @@ std::vector<narrowBand::value> Foam::immersedBodyBand::bandOf
     for (const label i : again)
     {
         narrowBand::value& d = band[i];
-        d.sp = b.geometry->closest(b.pose, c(C[cand[i]]));
+        d.sp = b.geometry->closest(pose, c(C[cand[i]]));
         d.phi = d.sp.distance;
         d.exact = true;
     }
@@ -249,7 +250,7 @@ std::vector<narrowBand::value> Foam::immersedBodyBand::bandOf
             x[k] = c(C[cand[fresh[k]]]);
             r[k] = reach_[cand[fresh[k]]];
         }
-        const auto found = narrowBand::signedDistances(*b.geometry, b.pose, x, r);
+        const auto found = narrowBand::signedDistances(*b.geometry, pose, x, r);
         forAll(fresh, k)
         {
             band[fresh[k]] = found[k];

@@ -2,6 +2,8 @@
 #include "coreConversion.H"
 #include "parallelSum.H"
 #include "boxFraction.H"
+#include "convexCells.H"
+#include "pairFilter.H"
 #include "treeBoundBox.H"
 #include "clockTime.H"
 #include "surfaceFields.H"
@@ -63,59 +65,131 @@ Foam::scalar Foam::immersedBoundaryProjection::largestCellSize()
         largestCellSize_ = returnReduce(h, maxOp<scalar>());
         // Split and graded hexahedra are not cubes
         largestCellSize_ *= 2;
+
+        // The smallest cell, rounded down to a power of two: the same on
+        // every processor and for the decomposed mesh as for the whole,
+        // whatever the round-off of the cell volumes
+        scalar hMin = GREAT;
+        for (const scalar Vc : mesh_.V()) hMin = min(hMin, cbrt(Vc));
+        hMin = returnReduce(hMin, minOp<scalar>());
+        restDistance_ = restFraction*std::exp2(std::floor(std::log2(hMin)));
     }
     return largestCellSize_;
+}
+
+
+
+bool Foam::immersedBoundaryProjection::hasProjectedPose(const label bi) const
+{
+    return size_t(bi) < projectedGeometry_.size() && projectedGeometry_[bi];
+}
+
+
+void Foam::immersedBoundaryProjection::restoreProjectedPose
+(
+    const demSolver& dem,
+    const label bi,
+    const bodyPose& pose
+)
+{
+    const size_t n = dem.bodies().size();
+    projectedPose_.resize(n);
+    projectedGeometry_.resize(n, nullptr);
+    projectedName_.resize(n);
+    projectedBox_.resize(n);
+    const rigidBody& b = dem.bodies()[bi];
+    projectedPose_[bi] = pose;
+    projectedGeometry_[bi] = b.geometry.get();
+    projectedName_[bi] = b.name;
+    projectedBox_[bi] = b.geometry->worldBox(pose);
+}
+
+
+immersedDEM::bodyPose Foam::immersedBoundaryProjection::geometryPose
+(
+    const demSolver& dem,
+    const size_t bi
+) const
+{
+    const rigidBody& b = dem.bodies()[bi];
+    if
+    (
+        projectedGeometry_.size() != dem.bodies().size()
+     || projectedGeometry_[bi] != b.geometry.get()
+     || projectedName_[bi] != b.name
+     || !(restDistance_ > 0)
+    )
+    {
+        return b.pose;
+    }
+    const bodyPose& p = projectedPose_[bi];
+    const scalar moved =
+        pairFilter::motionBound(p, b.pose, b.geometry->boundingRadius());
+    return moved <= restDistance_ ? p : b.pose;
 }
 
 
 Foam::labelList Foam::immersedBoundaryProjection::bodiesToProject
 (
     const demSolver& dem,
-    bool& all
+    const std::vector<bodyPose>& gp,
+    bool& all,
+    labelList& velocityOnly
 ) const
 {
     const auto& bodies = dem.bodies();
     const size_t n = bodies.size();
+    velocityOnly.clear();
     all =
         projectAll_ || debug || mesh_.dynamic() || mesh_.moving()
-     || projectedPose_.size() != n;
+     || projectedPose_.size() != n || uibPose_.size() != n;
     if (all) return labelList();
 
-    // Moved since their last projection: pose or velocities (Uib)
+    // Moved since their last projection: a geometry pose other than the
+    // last one (the surface moved farther than restDistance); moved within
+    // it, or changed their velocities: Uib only
+    auto same = [](const bodyPose& a, const bodyPose& b)
+    {
+        return
+            a.position() == b.position()
+         && a.orientation().coeffs() == b.orientation().coeffs();
+    };
     std::vector<bool> in(n, false);
     DynamicList<label> set;
+    DynamicList<label> velocities;
     for (size_t bi = 0; bi < n; ++bi)
     {
         if (dem.isWall(int(bi))) continue;
         const rigidBody& b = bodies[bi];
-        const bodyPose& p = projectedPose_[bi];
-        if
-        (
-            b.pose.position() != p.position()
-         || b.pose.orientation().coeffs() != p.orientation().coeffs()
-         || b.velocity != projectedVelocity_[bi]
-         || b.angularVelocity != projectedAngularVelocity_[bi]
-        )
+        if (!same(gp[bi], projectedPose_[bi]))
         {
             in[bi] = true;
             set.append(label(bi));
         }
+        else if
+        (
+            !same(b.pose, uibPose_[bi])
+         || b.velocity != uibVelocity_[bi]
+         || b.angularVelocity != uibAngularVelocity_[bi]
+        )
+        {
+            velocities.append(label(bi));
+        }
     }
-    if (set.empty()) return labelList();
 
     // Their cells (lambda > 0, and the sharp surface's ring) lie in their
     // world boxes grown by a cell; a body whose box, grown alike, comes
     // within a cell of theirs (before or after the move) may share cells
     // with them (the larger fraction wins, the first ring claims): it is
-    // projected again too, and so on. Then the bodies not projected own
-    // cells no projected body can reach, and the result is that of
-    // projecting every body
+    // projected again too (at its geometry pose), and so on. Then the
+    // bodies not projected own cells no projected body can reach, and the
+    // result is that of projecting every body
     const scalar g = 2*largestCellSize_;
     std::vector<axisAlignedBox> now(n);
-    for (size_t bi = 0; bi < n; ++bi)
+    for (size_t bi = 0; bi < n && set.size(); ++bi)
     {
         if (dem.isWall(int(bi))) continue;
-        now[bi] = bodies[bi].geometry->worldBox(bodies[bi].pose).inflated(g);
+        now[bi] = bodies[bi].geometry->worldBox(gp[bi]).inflated(g);
     }
     for (label k = 0; k < set.size(); ++k)
     {
@@ -131,6 +205,11 @@ Foam::labelList Foam::immersedBoundaryProjection::bodiesToProject
             }
         }
     }
+    for (const label bi : velocities)
+    {
+        if (!in[bi]) velocityOnly.append(bi);
+    }
+    if (set.empty()) return labelList();
     label nBodies = 0;
     for (size_t bi = 0; bi < n; ++bi)
     {
@@ -139,10 +218,40 @@ Foam::labelList Foam::immersedBoundaryProjection::bodiesToProject
     if (set.size() == nBodies)
     {
         all = true;
+        velocityOnly.clear();
         return labelList();
     }
     Foam::sort(set);
     return labelList(std::move(set));
+}
+
+
+void Foam::immersedBoundaryProjection::setVelocities
+(
+    const demSolver& dem,
+    const std::vector<bool>& velocityOnly
+)
+{
+    // The cells a body owns (lambda, and the sharp surface's ring) take
+    // its rigid velocity there now, as a projection would
+    vectorField& Uib = Uib_.primitiveFieldRef();
+    const vectorField& C = mesh_.cellCentres();
+    for (const label celli : touched_)
+    {
+        const label bi = bodyOf_[celli];
+        if (bi >= 0 && velocityOnly[bi])
+        {
+            Uib[celli] = v(dem.bodies()[bi].pointVelocity(c(C[celli])));
+        }
+    }
+    for (size_t bi = 0; bi < velocityOnly.size(); ++bi)
+    {
+        if (!velocityOnly[bi]) continue;
+        const rigidBody& b = dem.bodies()[bi];
+        uibPose_[bi] = b.pose;
+        uibVelocity_[bi] = b.velocity;
+        uibAngularVelocity_[bi] = b.angularVelocity;
+    }
 }
 
 
@@ -158,6 +267,16 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
 
     bool all = true;
     labelList toProject;
+    labelList velocityOnly;
+    std::vector<bodyPose> gp;
+    auto geometryPoses = [&]()
+    {
+        gp.resize(bodies.size());
+        for (size_t bi = 0; bi < bodies.size(); ++bi)
+        {
+            if (!dem.isWall(int(bi))) gp[bi] = geometryPose(dem, bi);
+        }
+    };
     if (bodyOf_.size() != mesh_.nCells())
     {
         // New mesh (start, topology change): everything
@@ -175,14 +294,25 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         largestCellSize_ = 0;
         cells_.clear();
         touched_.clear();
+        largestCellSize();
+        geometryPoses();
     }
     else
     {
         largestCellSize();
-        toProject = bodiesToProject(dem, all);
+        geometryPoses();
+        toProject = bodiesToProject(dem, gp, all, velocityOnly);
+        if (velocityOnly.size())
+        {
+            std::vector<bool> only(bodies.size(), false);
+            for (const label bi : velocityOnly) only[bi] = true;
+            setVelocities(dem, only);
+        }
         if (!all && toProject.empty())
         {
-            // Nothing moved: the cells stay as they are
+            // Nothing moved beyond restDistance: the cells stay as they
+            // are (Uib set again where velocities changed)
+            if (velocityOnly.size()) Uib_.correctBoundaryConditions();
             lastProjected_ = 0;
             projectedTimeIndex_ = mesh_.time().timeIndex();
             seconds_ += timer.elapsedTime();
@@ -255,22 +385,40 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     std::vector<std::vector<narrowBand::value>> band(toProject.size());
     projectedVolume_.setSize(bodies.size());
     projectedVolume_ = Zero;
+    const scalarField& reach = cells_.reach();
     forAll(toProject, k)
     {
         const label bi = toProject[k];
         const rigidBody& b = bodies[bi];
-        const axisAlignedBox wb = b.geometry->worldBox(b.pose);
+        const bodyPose& pose = gp[bi];
+        const axisAlignedBox wb = b.geometry->worldBox(pose);
         candidates[k] = cells_.candidatesOf
         (
             b, bi, treeBoundBox(v(wb.min) - grow, v(wb.max) + grow),
             0.5*largestCellSize_, debug
         );
         const labelList& cand = candidates[k];
-        band[k] = cells_.bandOf
-        (
-            b, bi, cand,
-            !debug && size_t(bi) < projectedPose_.size() ? &projectedPose_[bi] : nullptr
-        );
+
+        // Convex bodies by their planes, the others (bodies of convex
+        // pieces too) by the narrow band
+        std::unique_ptr<convexCells> planes;
+        if (convexCells::handles(*b.geometry, false))
+        {
+            planes.reset(new convexCells(*b.geometry, pose));
+            band[k].resize(cand.size());
+            forAll(cand, i)
+            {
+                band[k][i] = planes->classify(c(C[cand[i]]), reach[cand[i]]);
+            }
+        }
+        else
+        {
+            band[k] = cells_.bandOf
+            (
+                b, bi, cand, pose,
+                !debug && hasProjectedPose(bi) ? &projectedPose_[bi] : nullptr
+            );
+        }
 
         const treeBoundBox bb(v(wb.min), v(wb.max));
         forAll(cand, i)
@@ -282,12 +430,15 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             if (d.exact)
             {
                 // The reach covers the box's corners: a cell settled by
-                // the band is wholly inside or outside. A cut cell: the
-                // surface's second-order model at the centre's closest
-                // point, or eight pieces' planes where a crease passes
+                // the band is wholly inside or outside. A cut cell: its
+                // box clipped by the planes; or the surface's second-order
+                // model at the centre's closest point, or eight pieces'
+                // planes where a crease passes
                 vec3 lo, hi;
                 cellBox(celli, lo, hi);
-                f = boxFraction::fromQuery(*b.geometry, b.pose, lo, hi, c(C[celli]), d.sp);
+                f = planes
+                    ? planes->fraction(lo, hi)
+                    : boxFraction::fromQuery(*b.geometry, pose, lo, hi, c(C[celli]), d.sp);
             }
             if (f > lambda[celli])
             {
@@ -313,7 +464,7 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     {
         forAll(toProject, k)
         {
-            projectSharp(bodies[toProject[k]], toProject[k], candidates[k], band[k]);
+            projectSharp(bodies[toProject[k]], toProject[k], gp[toProject[k]], candidates[k], band[k]);
         }
     }
     label nCells = 0;
@@ -361,20 +512,27 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     Uib_.correctBoundaryConditions();
     projectedTimeIndex_ = mesh_.time().timeIndex();
 
-    // What each body was projected with
+    // What each body was projected with: its geometry pose, and its pose
+    // and velocities for Uib
     const size_t n = bodies.size();
     projectedPose_.resize(n);
-    projectedVelocity_.resize(n, vec3::Zero());
-    projectedAngularVelocity_.resize(n, vec3::Zero());
+    projectedGeometry_.resize(n, nullptr);
+    projectedName_.resize(n);
     projectedBox_.resize(n);
+    uibPose_.resize(n);
+    uibVelocity_.resize(n, vec3::Zero());
+    uibAngularVelocity_.resize(n, vec3::Zero());
     projections_.setSize(label(n), 0);
     for (const label bi : toProject)
     {
         const rigidBody& b = bodies[bi];
-        projectedPose_[bi] = b.pose;
-        projectedVelocity_[bi] = b.velocity;
-        projectedAngularVelocity_[bi] = b.angularVelocity;
-        projectedBox_[bi] = b.geometry->worldBox(b.pose);
+        projectedPose_[bi] = gp[bi];
+        projectedGeometry_[bi] = b.geometry.get();
+        projectedName_[bi] = b.name;
+        projectedBox_[bi] = b.geometry->worldBox(gp[bi]);
+        uibPose_[bi] = b.pose;
+        uibVelocity_[bi] = b.velocity;
+        uibAngularVelocity_[bi] = b.angularVelocity;
         ++projections_[bi];
     }
     lastProjected_ = toProject.size();
@@ -456,6 +614,7 @@ void Foam::immersedBoundaryProjection::projectSharp
 (
     const rigidBody& b,
     const label bi,
+    const bodyPose& pose,
     const labelList& candidates,
     const std::vector<::immersedDEM::narrowBand::value>& band
 )
@@ -472,7 +631,7 @@ void Foam::immersedBoundaryProjection::projectSharp
 
     auto phiAt = [&](const point& p)
     {
-        return b.geometry->signedDistance(b.pose, c(p));
+        return b.geometry->signedDistance(pose, c(p));
     };
     // The band's values: exact near the surface; elsewhere of the right
     // sign and larger than the cell's reach (its farthest neighbour), so

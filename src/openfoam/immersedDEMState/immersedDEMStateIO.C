@@ -84,6 +84,19 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             os.writeEntry("orientation", List<scalar>({q.w(), q.x(), q.y(), q.z()}));
             os.writeEntry("velocity", v(b.velocity));
             os.writeEntry("angularVelocity", v(b.angularVelocity));
+            if (projection_.hasProjectedPose(i))
+            {
+                // The pose its cells were projected at (a body at rest
+                // keeps it while it stays within restDistance)
+                const bodyPose& pp = projection_.projectedPose(i);
+                const quat& pq = pp.orientation();
+                os.writeEntry("projectedPosition", v(pp.position()));
+                os.writeEntry
+                (
+                    "projectedOrientation",
+                    List<scalar>({pq.w(), pq.x(), pq.y(), pq.z()})
+                );
+            }
             fluidLoad::fields(b.fluid, fluidLoadWriter{os});
             coupling_->writeBody(os, i);
             // The loads of the last step, for the first output row of a
@@ -236,6 +249,28 @@ bool Foam::immersedDEMState::readRestart()
         b.pose = bodyPose(c(d.get<vector>("position")), quat(q[0], q[1], q[2], q[3]));
         b.velocity = c(d.get<vector>("velocity"));
         b.angularVelocity = c(d.get<vector>("angularVelocity"));
+        // The pose its cells were projected at (states written before it
+        // have none: the body is projected where it is)
+        if (d.found("projectedPosition"))
+        {
+            const List<scalar> pq(d.get<List<scalar>>("projectedOrientation"));
+            if (pq.size() != 4)
+            {
+                FatalIOErrorInFunction(d)
+                    << "Keyword 'projectedOrientation' in " << d.name()
+                    << " must be a quaternion (w x y z)" << nl
+                    << exit(FatalIOError);
+            }
+            projection_.restoreProjectedPose
+            (
+                *dem_, i,
+                bodyPose
+                (
+                    c(d.get<vector>("projectedPosition")),
+                    quat(pq[0], pq[1], pq[2], pq[3])
+                )
+            );
+        }
         fluidLoad::fields(b.fluid, fluidLoadReader{d});
         coupling_->readBody(d, i);
         // The loads of the step before (absent from older states): the
