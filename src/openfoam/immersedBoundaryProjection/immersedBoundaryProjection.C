@@ -627,6 +627,7 @@ void Foam::immersedBoundaryProjection::projectSharp
     const surfaceScalarField& magSf = mesh_.magSf();
     const surfaceScalarField& deltaCoeffs = mesh_.nonOrthDeltaCoeffs();
     const label nInternal = mesh_.nInternalFaces();
+    const scalarField& reach = cells_.reach();
     vectorField& Uib = Uib_.primitiveFieldRef();
 
     auto phiAt = [&](const point& p)
@@ -670,6 +671,9 @@ void Foam::immersedBoundaryProjection::projectSharp
             continue;
         }
         if (owner >= 0 && owner != bi) continue;
+        // Beyond its reach (its farthest neighbour centre, processor
+        // neighbours too) no neighbour centre is inside
+        if (phiC > reach[celli]) continue;
 
         // Over the faces to centre-inside neighbours: the discrete
         // Laplacian puts the no-slip value at the neighbour's centre, a
