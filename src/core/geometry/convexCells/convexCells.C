@@ -64,7 +64,8 @@ struct polygons
 void clip
 (
     const polygons& X, const vec3& n, double t, double onPlane,
-    polygons& Y, std::vector<vec3>& cap
+    polygons& Y, std::vector<vec3>& cap,
+    std::vector<std::pair<double, int>>& order
 )
 {
     Y.clear();
@@ -111,7 +112,7 @@ void clip
     m /= double(cap.size());
     const vec3 u = (std::abs(n.x()) < 0.9 ? vec3::UnitX() : vec3::UnitY()).cross(n).normalized();
     const vec3 w = n.cross(u);
-    std::vector<std::pair<double, int>> order(cap.size());
+    order.resize(cap.size());
     for (size_t i = 0; i < cap.size(); ++i)
     {
         const vec3 r = cap[i] - m;
@@ -173,6 +174,99 @@ double clippedVolumeOf(const polygons& X, const vec3& n, double t, double onPlan
         }
     }
     return (V - t*n.dot(sum))/6;
+}
+
+//- The volume of the box [-e, e] behind two or three planes n_k.y <= t_k
+//  whose normals are well apart, without building their faces: the box's
+//  faces are clipped by every plane and integrated (divergence theorem
+//  about the origin); each plane's face has every point at n_k.y = t_k
+//  and an unknown area b_k/2, and the faces' area vectors close, so
+//  sum b_k n_k = -(the clipped box faces' sum): two or three independent
+//  normals give the b_k. False when the normals are too near dependent
+//  (the caller clips face by face then)
+bool boxVolumeBehindFew
+(
+    const vec3& e, const std::vector<std::pair<vec3, double>>& cuts,
+    double onPlane, double& volume
+)
+{
+    const size_t k = cuts.size();
+    mat3 N = mat3::Zero();
+    for (size_t i = 0; i < k; ++i) N.col(i) = cuts[i].first;
+    if (k == 2)
+    {
+        if (N.col(0).cross(N.col(1)).squaredNorm() < 1e-4) return false;
+    }
+    else if (k != 3 || std::abs(N.determinant()) < 1e-2)
+    {
+        return false;
+    }
+
+    static constexpr int faces[6][4] =
+    {
+        {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+        {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}
+    };
+    vec3 corner[8];
+    for (int c = 0; c < 8; ++c)
+    {
+        for (int i = 0; i < 3; ++i) corner[c][i] = (c >> i) & 1 ? e[i] : -e[i];
+    }
+    double V = 0;
+    vec3 S = vec3::Zero();
+    for (const auto& f : faces)
+    {
+        vec3 a[16], b[16];
+        int na = 4;
+        for (int i = 0; i < 4; ++i) a[i] = corner[f[i]];
+        for (size_t c = 0; c < k && na >= 3; ++c)
+        {
+            const vec3& n = cuts[c].first;
+            const double t = cuts[c].second;
+            int nb = 0;
+            double dp = n.dot(a[0]) - t;
+            for (int i = 0; i < na; ++i)
+            {
+                const vec3& p = a[i];
+                const vec3& q = a[i + 1 < na ? i + 1 : 0];
+                const double dq = n.dot(q) - t;
+                if (dp <= onPlane) b[nb++] = p;
+                if ((dp < -onPlane && dq > onPlane) || (dp > onPlane && dq < -onPlane))
+                {
+                    const bool pIn = dp < 0;
+                    const vec3& x = pIn ? p : q;
+                    const vec3& y = pIn ? q : p;
+                    const double dx = pIn ? dp : dq, dy = pIn ? dq : dp;
+                    b[nb++] = x + (y - x)*(dx/(dx - dy));
+                }
+                dp = dq;
+            }
+            na = nb;
+            for (int i = 0; i < na; ++i) a[i] = b[i];
+        }
+        if (na < 3) continue;
+        vec3 A = vec3::Zero();
+        for (int i = 1; i + 1 < na; ++i) A += (a[i] - a[0]).cross(a[i + 1] - a[0]);
+        V += a[0].dot(A);
+        S += A;
+    }
+    // sum b_i n_i = -S (least squares for two planes: consistent)
+    vec3 bk = vec3::Zero();
+    if (k == 2)
+    {
+        const double c = N.col(0).dot(N.col(1));
+        const double r0 = -S.dot(N.col(0)), r1 = -S.dot(N.col(1));
+        const double det = 1 - c*c;
+        bk[0] = (r0 - c*r1)/det;
+        bk[1] = (r1 - c*r0)/det;
+    }
+    else
+    {
+        bk = N.partialPivLu().solve(-S);
+    }
+    for (size_t i = 0; i < k; ++i) V += cuts[i].second*bk[i];
+    volume = V/6;
+    return true;
 }
 
 } // End anonymous namespace
@@ -405,8 +499,12 @@ double convexCells::clippedVolume(const piece& P, const vec3& lo, const vec3& hi
     // About the box centre (round-off), the planes that cut the box
     const vec3 c = 0.5*(lo + hi);
     const vec3 e = 0.5*(hi - lo);
+    // The scratch of this thread (no allocation per cell)
     thread_local std::vector<std::pair<vec3, double>> cuts;
     thread_local std::vector<int> cutFace;
+    thread_local polygons X, Y;
+    thread_local std::vector<vec3> cap;
+    thread_local std::vector<std::pair<double, int>> order;
     cuts.clear();
     cutFace.clear();
     double s = -std::numeric_limits<double>::max();
@@ -458,8 +556,15 @@ double convexCells::clippedVolume(const piece& P, const vec3& lo, const vec3& hi
         }
     }
 
-    thread_local polygons X, Y;
-    thread_local std::vector<vec3> cap;
+    double few = 0;
+    if
+    (
+        (cuts.size() == 2 || cuts.size() == 3)
+     && boxVolumeBehindFew(e, cuts, 1e-12*e.norm(), few)
+    )
+    {
+        return std::clamp(few, 0.0, V);
+    }
     X.clear();
     for (int a = 0; a < 3; ++a)
     {
@@ -483,7 +588,7 @@ double convexCells::clippedVolume(const piece& P, const vec3& lo, const vec3& hi
     const double onPlane = 1e-12*e.norm();
     for (size_t k = 0; k + 1 < cuts.size(); ++k)
     {
-        clip(X, cuts[k].first, cuts[k].second, onPlane, Y, cap);
+        clip(X, cuts[k].first, cuts[k].second, onPlane, Y, cap, order);
         std::swap(X, Y);
         if (X.nFaces() < 4) return 0;
     }
