@@ -104,15 +104,16 @@ TEST(fluidLoad, fieldsListEveryMemberOnce)
     };
     fluidLoad::fields(l, counter{names, nVectors, nScalars});
     EXPECT_EQ(nVectors, 6);
-    EXPECT_EQ(nScalars, 7);
-    EXPECT_EQ(names.size(), 13u);
+    EXPECT_EQ(nScalars, 8);
+    EXPECT_EQ(names.size(), 14u);
     // Every member was reached: none is left at its default
     EXPECT_EQ(l.force.sum() + l.torque.sum() + l.referenceVelocity.sum()
         + l.referenceAcceleration.sum() + l.referenceAngularVelocity.sum()
         + l.referenceAngularAcceleration.sum(), 18);
     EXPECT_EQ(l.damping + l.addedMass + l.nominalAddedMass + l.referenceTime
-        + l.angularDamping + l.addedInertia + l.courseExtrapolated, 7);
-    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 7*sizeof(double));
+        + l.angularDamping + l.addedInertia + l.courseExtrapolated
+        + l.impactRestartsCourse, 8);
+    EXPECT_EQ(sizeof(fluidLoad), 6*sizeof(vec3) + 8*sizeof(double));
 }
 
 // The contact rule: no inertia, dampers m_a/dt and I_a/dt on the

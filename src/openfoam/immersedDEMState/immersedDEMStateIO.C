@@ -41,6 +41,7 @@ struct fluidLoadReader
          && (
                 std::string(name) == "fluidAddedInertia"
              || std::string(name) == "fluidCourseExtrapolated"
+             || std::string(name) == "fluidImpactRestartsCourse"
             )
         )
         {

@@ -605,6 +605,11 @@ void Foam::immersedFluidCoupling::fluidLoads
                 F, T, z, dem.time(), b.velocity, a, b.angularVelocity, alpha
             );
         }
+        // Free of contacts at the step's start: an impact within the step
+        // restarts the dampers' course (the contact moves the body with
+        // its own added mass, far faster than the fluid; the damper would
+        // take its rebound back towards the course before it)
+        b.fluid.impactRestartsCourse = inContact[i] ? 0 : 1;
         if (debug)
         {
             Info<< "IFC " << word(b.name) << " t " << U.time().value()

@@ -398,6 +398,12 @@ void demSolver::step(double dt)
     for (rigidBody& b : bodies_)
     {
         rigidBodyIntegrator::kick(b, 0.5*dt);
+        // An impact of a body free at the CFD step's start: the fluid's
+        // dampers go on from the velocity it leaves with (fluidLoad.H)
+        if (b.fluid.impactRestartsCourse != 0 && !b.contactForce.isZero())
+        {
+            b.fluid.restartCourse(b.velocity, b.angularVelocity, time_ + dt);
+        }
     }
     time_ += dt;
     ++counters_.steps;
