@@ -5,7 +5,9 @@
 # with this tree's (built), and compares their bodies.dat and contacts.dat
 # byte for byte (cmp). For refactorings that must not change a result.
 #   validation/benchmarks/bitCompare.sh REV [WORKDIR]
-# REV      the revision to compare with (e.g. main~2, a commit)
+# REV      the revision to compare with (e.g. main~2, a commit), or a tree
+#          of it already built (a directory with .build/lib/libimmersedDEM.so,
+#          such as a CI clone): used as it is
 # WORKDIR  where the worktree and the runs go (default /tmp/bitCompare)
 # Cases (about 25 minutes for both builds on 2 cores):
 #   settlingPile to 0.03 s (coupled; films, mesh bodies, contacts),
@@ -21,15 +23,23 @@ work="${2:-/tmp/bitCompare}"
 here="$(cd "$(dirname "$0")/../.." && pwd -P)"
 [ -f "$here/.build/lib/libimmersedDEM.so" ] || { echo "Build this tree first (./Allwmake)" 1>&2; exit 1; }
 mkdir -p "$work"
-old="$work/tree"
-if [ -d "$old" ]
+if [ -f "$rev/.build/lib/libimmersedDEM.so" ]
 then
-    git -C "$here" worktree remove --force "$old" 2>/dev/null || rm -rf "$old"
+    old="$(cd "$rev" && pwd -P)"
+    prebuilt=1
+    echo "Comparing with the tree built in $old ($(git -C "$old" rev-parse --short HEAD))"
+else
+    prebuilt=0
+    old="$work/tree"
+    if [ -d "$old" ]
+    then
+        git -C "$here" worktree remove --force "$old" 2>/dev/null || rm -rf "$old"
+    fi
+    git -C "$here" worktree prune
+    git -C "$here" worktree add --detach "$old" "$rev" > /dev/null || exit 1
+    echo "Building $rev in $old"
+    (cd "$old" && ./Allwmake > "$work/log.Allwmake" 2>&1) || { echo "Build of $rev failed: see $work/log.Allwmake"; exit 1; }
 fi
-git -C "$here" worktree prune
-git -C "$here" worktree add --detach "$old" "$rev" > /dev/null || exit 1
-echo "Building $rev in $old"
-(cd "$old" && ./Allwmake > "$work/log.Allwmake" 2>&1) || { echo "Build of $rev failed: see $work/log.Allwmake"; exit 1; }
 
 runCases()
 {
@@ -71,5 +81,5 @@ do
         fi
     done
 done
-git -C "$here" worktree remove --force "$old" 2>/dev/null
+[ $prebuilt = 1 ] || git -C "$here" worktree remove --force "$old" 2>/dev/null
 exit $status

@@ -5,6 +5,7 @@
 
 #include "immersedDEMState.H"
 #include "coreConversion.H"
+#include "restartEntries.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "OSspecific.H"
@@ -17,40 +18,6 @@ namespace
 
 constexpr auto v = &Foam::coreConversion::toFoam;
 constexpr auto c = &Foam::coreConversion::toCore;
-
-// fluidLoad::fields visitors: each member under its restart name
-struct fluidLoadWriter
-{
-    Foam::Ostream& os;
-    void operator()(const char* name, const vec3& x) { os.writeEntry(name, v(x)); }
-    void operator()(const char* name, const double x) { os.writeEntry(name, x); }
-};
-
-struct fluidLoadReader
-{
-    const Foam::dictionary& d;
-    void operator()(const char* name, vec3& x) { x = c(d.get<Foam::vector>(name)); }
-    void operator()(const char* name, double& x)
-    {
-        // Restart files written before the implicit coupling have no
-        // added moment of inertia and no course flag: none, as they were
-        // written
-        if
-        (
-            !d.found(name)
-         && (
-                std::string(name) == "fluidAddedInertia"
-             || std::string(name) == "fluidCourseExtrapolated"
-             || std::string(name) == "fluidImpactRestartsCourse"
-            )
-        )
-        {
-            x = 0;
-            return;
-        }
-        x = d.get<Foam::scalar>(name);
-    }
-};
 
 } // End anonymous namespace
 
@@ -98,7 +65,7 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
                     List<scalar>({pq.w(), pq.x(), pq.y(), pq.z()})
                 );
             }
-            fluidLoad::fields(b.fluid, fluidLoadWriter{os});
+            fluidLoad::fields(b.fluid, restartEntries::writer{os});
             coupling_->writeBody(os, i);
             // The loads of the last step, for the first output row of a
             // continued run (the DEM computes them again before its step)
@@ -272,7 +239,24 @@ bool Foam::immersedDEMState::readRestart()
                 )
             );
         }
-        fluidLoad::fields(b.fluid, fluidLoadReader{d});
+        // (restart files written before the implicit coupling have no
+        // added moment of inertia and no course flags: none, as they were
+        // written)
+        fluidLoad::fields
+        (
+            b.fluid,
+            restartEntries::reader
+            {
+                d,
+                [](const word& name)
+                {
+                    return
+                        name == "fluidAddedInertia"
+                     || name == "fluidCourseExtrapolated"
+                     || name == "fluidImpactRestartsCourse";
+                }
+            }
+        );
         coupling_->readBody(d, i);
         // The loads of the step before (absent from older states): the
         // first output row carries them, and the first DEM step kicks with

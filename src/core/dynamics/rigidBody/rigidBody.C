@@ -1,7 +1,9 @@
 #include "rigidBody.H"
 #include "coreError.H"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace immersedDEM
@@ -94,6 +96,63 @@ vec3 rigidBody::angularMomentum() const
 {
     const vec3 wBody = pose.vectorToBody(angularVelocity);
     return pose.vectorToWorld(inertia().cwiseProduct(wBody));
+}
+
+fluidImpedance::bodySize rigidBody::fluidSize() const
+{
+    const triangleSoup surface = geometry->surface();
+    double area = 0;
+    for (const auto& f : surface.faces)
+    {
+        const vec3& p0 = surface.points[f[0]];
+        area += 0.5*(surface.points[f[1]] - p0).cross(surface.points[f[2]] - p0).norm();
+    }
+    fluidImpedance::bodySize s;
+    s.volume = geometry->volume();
+    s.area = area;
+    s.circumscribedRadius = geometry->boundingRadius();
+    s.depth = 0;
+
+    // A 2D body: its locked axis is fixed in the body's frame (it turns
+    // only about it)
+    int locked = -1;
+    if (lockTranslation.sum() == 1)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            if
+            (
+                lockTranslation[k]
+             && lockRotation[(k + 1) % 3] && lockRotation[(k + 2) % 3]
+            )
+            {
+                locked = k;
+            }
+        }
+    }
+    if (locked >= 0 && !surface.points.empty())
+    {
+        const vec3 e = pose.vectorToBody(vec3::Unit(locked));
+        double lo = std::numeric_limits<double>::max();
+        double hi = -lo;
+        double R2 = 0;
+        for (const vec3& p : surface.points)
+        {
+            const double z = p.dot(e);
+            lo = std::min(lo, z);
+            hi = std::max(hi, z);
+            R2 = std::max(R2, (p - z*e).squaredNorm());
+        }
+        if (hi > lo)
+        {
+            s.depth = hi - lo;
+            const double section = s.volume/s.depth;
+            s.volume = section;
+            s.area = std::max(area - 2*section, 0.0)/s.depth;
+            s.circumscribedRadius = std::sqrt(R2);
+        }
+    }
+    return s;
 }
 
 } // End namespace immersedDEM

@@ -1,0 +1,45 @@
+// Restart I/O of immersedFluidCoupling: each body's couplingMemory under
+// its fields' names, in the body's entry of the state file
+// (immersedDEMStateIO.C), and the last CFD step
+
+#include "immersedFluidCoupling.H"
+#include "restartEntries.H"
+
+using namespace immersedDEM;
+
+
+void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
+{
+    couplingMemory::fields(memory_[i], restartEntries::writer{os});
+    os.writeEntry("previousDeltaT", previousDeltaT_);
+}
+
+
+void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
+{
+    // A state written before some of the memory existed: what it lacks is
+    // as for a body in contact with no history (first order in time at its
+    // next step; the measured added mass starts from nothing). The inner
+    // momenta and the last velocities are always there
+    couplingMemory m;
+    m.wasInContact = true;
+    couplingMemory::fields
+    (
+        m,
+        restartEntries::reader
+        {
+            d,
+            [](const word& name)
+            {
+                return
+                    name != "previousVelocity"
+                 && name != "previousAngularVelocity"
+                 && name != "innerMomentum"
+                 && name != "innerAngularMomentum";
+            }
+        }
+    );
+    memory_[i] = m;
+    innerMomentumSet_ = true;
+    previousDeltaT_ = max(previousDeltaT_, d.getOrDefault<scalar>("previousDeltaT", 0));
+}
