@@ -22,7 +22,8 @@ The expected spin: the top wall (y = +H/2) moves at +Uw, the bottom one at
 vorticity omega_f,z = dv/dx - du/dy = -G (clockwise seen from +z). A
 torque-free circular cylinder in a linear shear flow (Stokes flow; at the
 default particle Reynolds number G D^2/nu = 0.04 the inertial correction is
-negligible) turns at half the vorticity:
+negligible) turns at half the vorticity, and so does a torque-free sphere
+(-shape sphere; exact in unbounded Stokes flow):
 
     omegaExpected = -G/2 = -Uw/H        (-0.5 rad/s at the defaults)
 
@@ -95,11 +96,12 @@ def main():
 
     time = t["time"]
     vx, vy, vz = t["vx"], t["vy"], t["vz"]
-    x, y = t["x"], t["y"]
+    x, y, z = t["x"], t["y"], t["z"]
     wz = t["wz"]
     maxVy = max(abs(v) for v in vy)
     maxDx = max(abs(xi - p["x0"]) for xi in x)/D
     maxDy = max(abs(yi - p["y0"]) for yi in y)/D
+    maxDz = max(abs(zi - p.get("z0", zi)) for zi in z)/D if p["shape"] == "sphere" else 0.0
     speed = [math.sqrt(u*u + v*v + w*w) for u, v, w in zip(vx, vy, vz)]
     iMax = max(range(len(speed)), key=lambda i: speed[i])
     ratio = wz[-1]/omegaExpected
@@ -107,12 +109,12 @@ def main():
     print("case %s: body %s (%s), D %g m, H %g m, Uw %g m/s, shear rate 2 Uw/H = %g 1/s; "
           "%d rows, t %g to %g s" % (a.case, body, p["shape"], D, H, Uw, shear, len(t), time[0], time[-1]))
     print("largest |vy|: %.4g m/s (%.4g Uw)" % (maxVy, maxVy/Uw))
-    print("largest |x - x0|/D: %.4g, largest |y - y0|/D: %.4g (x0 %g, y0 %g m)"
-          % (maxDx, maxDy, p["x0"], p["y0"]))
+    print("largest |x - x0|/D: %.4g, largest |y - y0|/D: %.4g, largest |z - z0|/D: %.4g (x0 %g, y0 %g m)"
+          % (maxDx, maxDy, maxDz, p["x0"], p["y0"]))
     print("final omega_z: %.6g rad/s at t %g s; expected -shear/2 = -Uw/H = %.6g rad/s "
           "(clockwise: the fluid's vorticity is -du/dy = %.6g 1/s); ratio %.4f"
           % (wz[-1], time[-1], omegaExpected, -shear, ratio))
-    if p["shape"] != "circle":
+    if p["shape"] == "ellipse":
         A, B = p["a"], p["b"]
         # the orientation from the integral of omega_z (at rest, phi = 0, at t = 0)
         phi, tPrev, wPrev = 0.0, 0.0, 0.0
@@ -126,7 +128,7 @@ def main():
               % (A, B, math.degrees(phi), jeffery, wz[-1]/jeffery, mean))
     print("largest body speed: %.4g m/s (%.4g Uw) at t %g s" % (speed[iMax], speed[iMax]/Uw, time[iMax]))
     print("couette: maxSpeed/Uw %.4g, maxDisp/D %.4g, omega/omegaExpected %.4g"
-          % (speed[iMax]/Uw, max(maxDx, maxDy), ratio))
+          % (speed[iMax]/Uw, max(maxDx, maxDy, maxDz), ratio))
     sys.exit(0)
 
 

@@ -11,7 +11,8 @@ pick up speed, and spin at half the fluid's vorticity).
 The problem (SI units): two walls H apart (default 20 mm) moving along x at
 +Uw (the top one, y = +H/2) and -Uw (the bottom one, y = -H/2), default
 Uw = 0.01 m/s; periodic (cyclic) along x with length Lx (default 20 mm);
-one cell thick along z (a 1 mm slab, -slab) with empty front and back;
+one cell thick along z (a 1 mm slab, -slab) with empty front and back
+(-shape sphere: 3D, periodic along z too, -Lz long, default -Lx);
 uniform cells D/n; liquid of density 1000 kg/m3 and nu (default 1e-4 m2/s);
 no gravity (constant/g zero). The initial velocity is the linear Couette
 profile u = Uw 2y/H (y from the centre), the shear rate 2 Uw/H.
@@ -22,7 +23,8 @@ elliptic cylinder of semi-axes a = D/2 along x and b = D/4 along y), density
 centre of the periodic cell (x = y = 0); an STL prism three slabs long
 through the one-cell slab, as in validation/studies/settlingCylinder2D. In
 the 2D mesh the plugin locks its translation along z and its rotation about
-x and y itself.
+x and y itself. -shape sphere: a free sphere of diameter D at the centre of
+the 3D cell, nothing locked.
 
 Solver settings as settlingCylinder2D/makeCase.py immersed: stock
 pimpleFoam, the unsteadyCylinder study's controlDict, fvSchemes and
@@ -82,17 +84,26 @@ def couette(a):
     nx = cells(a.Lx, h, "-Lx")
     ny = cells(a.H, h, "-H")
     x0, x1, y0, y1 = -a.Lx/2, a.Lx/2, -a.H/2, a.H/2
-    z1 = a.slab
+    sphere = a.shape == "sphere"
+    # 3D (a sphere): periodic along z too, Lz long, the cell's centre at
+    # z = 0; 2D: one cell from 0 to slab
+    z0, z1 = (-a.Lz/2, a.Lz/2) if sphere else (0, a.slab)
+    nz = cells(a.Lz, h, "-Lz") if sphere else 1
+    frontAndBack = ("    front { type cyclic; neighbourPatch back; faces ( (0 3 2 1) ); }\n"
+                    "    back { type cyclic; neighbourPatch front; faces ( (4 5 6 7) ); }"
+                    if sphere else "    frontAndBack { type empty; faces ( (0 3 2 1) (4 5 6 7) ); }")
+    sideBC = ("    front { type cyclic; }\n    back { type cyclic; }" if sphere
+              else "    frontAndBack { type empty; }")
     write(os.path.join(d, "system/blockMeshDict"), "dictionary", "blockMeshDict", """
 scale   1;
 vertices
 (
-    (%.12g %.12g 0) (%.12g %.12g 0) (%.12g %.12g 0) (%.12g %.12g 0)
+    (%.12g %.12g %.12g) (%.12g %.12g %.12g) (%.12g %.12g %.12g) (%.12g %.12g %.12g)
     (%.12g %.12g %.12g) (%.12g %.12g %.12g) (%.12g %.12g %.12g) (%.12g %.12g %.12g)
 );
 blocks
 (
-    hex (0 1 2 3 4 5 6 7) (%d %d 1) simpleGrading (1 1 1)
+    hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1)
 );
 boundary
 (
@@ -100,17 +111,18 @@ boundary
     top { type wall; faces ( (3 7 6 2) ); }
     left { type cyclic; neighbourPatch right; faces ( (0 4 7 3) ); }
     right { type cyclic; neighbourPatch left; faces ( (1 2 6 5) ); }
-    frontAndBack { type empty; faces ( (0 3 2 1) (4 5 6 7) ); }
+%s
 );
-""" % (x0, y0, x1, y0, x1, y1, x0, y1,
-       x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1, nx, ny))
+""" % (x0, y0, z0, x1, y0, z0, x1, y1, z0, x0, y1, z0,
+       x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1, nx, ny, nz, frontAndBack))
 
     # the linear Couette profile at the cell centres (blockMesh numbers the
-    # cells of a block x fastest, then y)
+    # cells of a block x fastest, then y, then z)
     profile = []
     for j in range(ny):
         u = "(%.12g 0 0)" % (a.Uw*2*(y0 + (j + 0.5)*h)/a.H)
         profile.extend([u]*nx)
+    profile = profile*nz
     write(os.path.join(d, "0/U"), "volVectorField", "U", """
 dimensions      [0 1 -1 0 0 0 0];
 internalField   nonuniform List<vector>
@@ -125,9 +137,9 @@ boundaryField
     top { type fixedValue; value uniform (%.12g 0 0); }
     left { type cyclic; }
     right { type cyclic; }
-    frontAndBack { type empty; }
+%s
 }
-""" % (nx*ny, "\n".join(profile), -a.Uw, a.Uw))
+""" % (nx*ny*nz, "\n".join(profile), -a.Uw, a.Uw, sideBC))
     write(os.path.join(d, "0/p"), "volScalarField", "p", """
 dimensions      [0 2 -2 0 0 0 0];
 internalField   uniform 0;
@@ -137,9 +149,9 @@ boundaryField
     top { type zeroGradient; }
     left { type cyclic; }
     right { type cyclic; }
-    frontAndBack { type empty; }
+%s
 }
-""")
+""" % sideBC)
     write(os.path.join(d, "constant/transportProperties"), "dictionary",
           "transportProperties", "\ntransportModel  Newtonian;\nnu              %g;\n" % a.nu)
     write(os.path.join(d, "constant/turbulenceProperties"), "dictionary",
@@ -175,22 +187,40 @@ value           (0 0 0);
     # like the helper's
     oGrid.immersedCylinder(d, a.slab, "(0 0 %.12g)" % (a.slab/2),
                            density="        density     %g;\n" % a.density)
-    semiB = a.D/2 if a.shape == "circle" else a.D/4
-    prismSTL(os.path.join(d, "constant/triSurface/cylinder.stl"), a.D/2, semiB, -a.slab, 2*a.slab)
+    semiB = a.D/4 if a.shape == "ellipse" else a.D/2
+    if sphere:
+        # the body a sphere at the centre of the cell
+        props = os.path.join(d, "constant/immersedDEMProperties")
+        text = open(props).read().replace(
+            "        shape       triangleMesh;\n        file        cylinder.stl;\n",
+            "        shape       sphere;\n        radius      %.12g;\n" % (a.D/2)).replace(
+            "position    (0 0 %.12g);" % (a.slab/2), "position    (0 0 0);").replace(
+            "    cylinder\n    {", "    sphere\n    {")
+        if "shape       sphere;" not in text or "position    (0 0 0);" not in text:
+            raise SystemExit("makeCouette.py: could not make the body a sphere in %s" % props)
+        open(props, "w").write(text)
+        os.remove(os.path.join(d, "constant/triSurface/cylinder.stl"))
+    else:
+        prismSTL(os.path.join(d, "constant/triSurface/cylinder.stl"), a.D/2, semiB,
+                 -a.slab, 2*a.slab)
     with open(os.path.join(d, "couetteParameters"), "w") as f:
         f.write("# makeCouette.py: the case's parameters (SI), read by checkCouette.py\n")
         for k, v in (("shape", a.shape), ("D", a.D), ("a", a.D/2), ("b", semiB), ("H", a.H),
                      ("Lx", a.Lx), ("Uw", a.Uw), ("nu", a.nu), ("density", a.density),
-                     ("n", a.n), ("x0", 0.0), ("y0", 0.0), ("slab", a.slab)):
+                     ("n", a.n), ("x0", 0.0), ("y0", 0.0), ("z0", 0.0), ("slab", a.slab),
+                     ("Lz", a.Lz if sphere else a.slab)):
             f.write("%s %s\n" % (k, v if isinstance(v, str) else "%.12g" % v))
-    return nx*ny
+    return nx*ny*nz
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("dir")
-    p.add_argument("-shape", choices=["circle", "ellipse"], default="circle",
-                   help="circle: diameter D; ellipse: semi-axes D/2 along x, D/4 along y")
+    p.add_argument("-shape", choices=["circle", "ellipse", "sphere"], default="circle",
+                   help="circle: diameter D; ellipse: semi-axes D/2 along x, D/4 along y; "
+                   "sphere: diameter D, in a 3D cell periodic along x and z")
+    p.add_argument("-Lz", type=float, default=None,
+                   help="sphere: periodic length along z [m] (default -Lx)")
     p.add_argument("-D", type=float, default=0.002, help="body diameter (ellipse: major axis) [m]")
     p.add_argument("-H", type=float, default=0.02, help="distance between the walls [m]")
     p.add_argument("-Lx", type=float, default=0.02, help="periodic length along x [m]")
@@ -204,10 +234,12 @@ def main():
     p.add_argument("-endTime", type=float, default=2.0)
     p.add_argument("-writeInterval", type=float, default=None, help="field writes [s] (default endTime)")
     a = p.parse_args()
+    if a.Lz is None:
+        a.Lz = a.Lx
     if min(a.D, a.H, a.Lx, a.Uw, a.nu, a.density, a.slab, a.maxCo, a.maxDeltaT, a.endTime) <= 0 \
             or a.n < 1:
         p.error("every size, speed, density, step and time must be positive")
-    if a.D >= a.H or a.D >= a.Lx:
+    if a.D >= a.H or a.D >= a.Lx or (a.shape == "sphere" and a.D >= a.Lz):
         p.error("the body (D %g m) must fit between the walls and in the periodic length" % a.D)
     os.makedirs(a.dir, exist_ok=True)
     nc = couette(a)
