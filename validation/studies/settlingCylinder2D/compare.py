@@ -9,8 +9,7 @@ For each immersed run (makeCase.py immersed, run with pimpleFoam) the
 terminal velocity is the mean speed |vy| (settling or rising) over the last -window
 seconds of postProcessing/bodies/0/bodies.dat; the speed must have settled
 there (its change over the window below 0.5% of it) and the body must have
-stayed near the axis (|x| below 1e-2 D: the reference is the centred body;
-an offset that small changes its drag by about 1e-4). Prints a table row per run and exits
+stayed near the axis (|x| below 1e-3 D). Prints a table row per run and exits
 1 if a run misses the reference by more than -tolerance or has not settled.
 """
 import argparse, math, os, sys
@@ -64,7 +63,13 @@ def main():
         drift = (m2 - m1)/ut
         xmax = max(abs(xi) for xi in x)/D
         err = ut/a.reference - 1
-        good = abs(err) <= a.tolerance and abs(drift) < 0.005 and xmax < 1e-2
+        # 0.005: settled, the speed's change over the window a sixth of
+        # the 3% target (the approach is exponential: at 0.5% it is still
+        # visible in the mean). 1e-3 D: the flow is symmetric about the
+        # axis, so a drift is an asymmetry of the discretisation; the
+        # case test's run drifts 6e-4 D (README); an offset x changes the
+        # drag as (2x/W)^2, 6e-8 at 1e-3 D, so the centred reference holds
+        good = abs(err) <= a.tolerance and abs(drift) < 0.005 and xmax < 1e-3
         ok = ok and good
         print("| %s | %g | %.5f | %+.2f%% | %+.2f%% | %.1e |%s"
               % (os.path.basename(os.path.normpath(run)), cellsPerD(run), ut, 100*err, 100*drift, xmax,
