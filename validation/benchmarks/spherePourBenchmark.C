@@ -23,11 +23,20 @@ Description
         dx = 0.2 mm sin(7919 y0 + 3001 z0),  dy = 0.2 mm sin(6007 x0 + 4001 z0)
     (x0, y0, z0 the lattice point in metres).
 
+    The damping has the same form on both sides: the normal force
+        f_n = max(0, 4/3 E* sqrt(R*) delta^(3/2) + c sqrt(m* S_n) v_n)
+    and the tangential damping c sqrt(m* S_t), with c = c(0.5, 3/2) of
+    restitutionCalibration (a head-on rebound of exactly 0.5). LIGGGHTS's
+    hertz model is that form with c = 2 sqrt(5/6) |beta|,
+    beta = ln e_L/sqrt(ln^2 e_L + pi^2), and limitForce on (no
+    attraction): compareLiggghts.sh gives it the e_L whose c is this one,
+    from the damping printed here.
+
     Prints the setup, a history every 2500 steps as LIGGGHTS's thermo
     (step, translational and rotational kinetic energy, mean and maximum
     height of the centres) and a summary; its last line, for scripts:
         RESULT steps=N wall=s stepsPerSecond=x keTrans=J keRot=J
-               meanHeight=m maxHeight=m lost=n nan=0|1
+               meanHeight=m maxHeight=m lost=n nan=0|1 damping=c
     (one line). wall is the clock around the stepping loop only, as
     LIGGGHTS's "Loop time".
 
@@ -43,6 +52,7 @@ Usage
 #include "halfSpaceShape.H"
 #include "sphereShape.H"
 #include "hertzMindlinContactLaw.H"
+#include "restitutionCalibration.H"
 #include "coreError.H"
 
 #include <algorithm>
@@ -216,6 +226,9 @@ int run(const options& o)
         nSpheres, radius*1e3, density, nSide, spacing*1e3);
     std::printf("  box %g x %g mm, 5 plane walls; Y = %g Pa, nu = %g, e = %g, mu = %g\n",
         W*1e3, W*1e3, m.youngsModulus, m.poissonsRatio, m.restitution, m.friction);
+    const double damping = restitutionCalibration::damping(m.restitution, 1.5);
+    std::printf("  damping c(e, 3/2) = %.12g: f_n = max(0, 4/3 E* sqrt(R*) delta^1.5 + c sqrt(m* S_n) v_n)\n",
+        damping);
     std::printf("  law %s, overlap %s; dt = %g s = t_c/%.1f (sphere-sphere t_c %.3g s at 0.5 m/s;"
         " sphere-wall %.3g s); %ld steps = %g s\n\n",
         s.contactLaw.c_str(), s.overlapMethod.c_str(), o.dt, tcSphere/o.dt, tcSphere, tcWall,
@@ -267,9 +280,9 @@ int run(const options& o)
     std::printf("  outside the box         %d\n", st.lost);
     std::printf("  NaN                     %s\n", st.nan ? "yes" : "no");
     std::printf("RESULT steps=%ld wall=%.6f stepsPerSecond=%.3f keTrans=%.6e keRot=%.6e"
-        " meanHeight=%.6e maxHeight=%.6e lost=%d nan=%d\n",
+        " meanHeight=%.6e maxHeight=%.6e lost=%d nan=%d damping=%.12g\n",
         w.steps, seconds, w.steps/std::max(seconds, 1e-12), st.keTrans, st.keRot,
-        st.meanHeight, st.maxHeight, st.lost, st.nan ? 1 : 0);
+        st.meanHeight, st.maxHeight, st.lost, st.nan ? 1 : 0, damping);
     return st.nan ? 1 : 0;
 }
 
