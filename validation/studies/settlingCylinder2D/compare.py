@@ -14,7 +14,20 @@ stayed near the axis (|x| below 1e-3 D). Prints a table row per run and exits
 """
 import argparse, math, os, sys
 
-D = 0.01
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMCase import caseConstants, number  # noqa: E402
+
+
+def constants(run):
+    """The cylinder's diameter (its surface's extent across), density
+    ratio and the fluid's viscosity, from the run's case"""
+    c = caseConstants(run)
+    e = c.bodyEntry("cylinder")
+    scale = number(e.get("scale", "1"))
+    xs = [float(l.split()[1])*scale
+          for l in open(os.path.join(run, "constant", "triSurface", e["file"].strip('"')))
+          if l.strip().startswith("vertex")]
+    return max(xs) - min(xs), c.density("cylinder")/c.rhoFluid, c.nu
 
 
 def motion(run):
@@ -50,6 +63,7 @@ def main():
     print("|---|---|---|---|---|---|")
     series = []
     for run in a.runs:
+        D, ratio, nu = constants(run)
         t, v, x, y = motion(run)
         tEnd = t[-1]
         w = [i for i in range(len(t)) if t[i] >= tEnd - a.window]
@@ -75,7 +89,7 @@ def main():
               % (os.path.basename(os.path.normpath(run)), cellsPerD(run), ut, 100*err, 100*drift, xmax,
                  "" if good else " FAILED"))
         series.append((run, t, v))
-    print("body-fitted reference: %.5f m/s (Re %.2f at nu 1e-4)" % (a.reference, a.reference*D/1e-4))
+    print("body-fitted reference: %.5f m/s (Re %.2f at nu %g, D %g m)" % (a.reference, a.reference*D/nu, nu, D))
     if a.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -87,7 +101,8 @@ def main():
         ax.axhspan(1 - a.tolerance, 1 + a.tolerance, color="0.9", zorder=0, label="+-%g%%" % (100*a.tolerance))
         ax.set_xlabel("t [s]")
         ax.set_ylabel("settling speed / body-fitted terminal velocity")
-        ax.set_title("2D cylinder settling in a channel (W = 8 D, rho_s/rho_f = 1.5, Re about 16.5)", fontsize=9)
+        ax.set_title("2D cylinder settling in a channel (W = 8 D, rho_s/rho_f = %g, Re about %.3g)"
+                     % (ratio, a.reference*D/nu), fontsize=9)
         ax.set_ylim(0, 1.15)
         ax.legend(fontsize=8, loc="lower right")
         fig.tight_layout()
