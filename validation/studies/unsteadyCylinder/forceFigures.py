@@ -13,7 +13,31 @@ As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict.
 """
 import glob, os, sys
 
-D, U, RHO = 0.01, 0.01, 1000.0
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMCase import caseConstants, number, readDictionary, vector  # noqa: E402
+
+# The study's diameter and speed (makeCase.py), for the Strouhal number of
+# a body-fitted run (its forceCoeffs gives the coefficients); an immersed
+# run's are read from its case
+D, U = 0.01, 0.01
+
+
+def immersedConstants(case):
+    """(rho, U, D) of an immersed run: rhoInf, the inflow's final speed
+    (0/U's inlet) and the cylinder's diameter (its surface's extent)"""
+    c = caseConstants(case)
+    inlet = readDictionary(os.path.join(case, "0", "U"))["boundaryField"]["inlet"]
+    if "uniformValue" in inlet:
+        table = inlet["uniformValue"]          # table ((t (u v w)) ...)
+        u = vector(table[-1][-1][-1])
+    else:
+        u = vector(inlet["value"][-1])         # uniform (u v w)
+    e = c.bodyEntry("cylinder")
+    scale = number(e.get("scale", "1"))
+    xs = [float(l.split()[1])*scale
+          for l in open(os.path.join(case, "constant", "triSurface", e["file"].strip('"')))
+          if l.strip().startswith("vertex")]
+    return c.rhoFluid, sum(x*x for x in u)**0.5, max(xs) - min(xs)
 
 
 def _slab(case):
@@ -50,7 +74,8 @@ def history(case):
         files = glob.glob(os.path.join(case, "postProcessing/bodies/*/bodies*.dat"))
         if not files:
             raise SystemExit("forceFigures: no force history in %s" % case)
-        q = 0.5*RHO*U*U*D*_slab(case)
+        rho, u, d = immersedConstants(case)
+        q = 0.5*rho*u*u*d*_slab(case)
         for f in sorted(files, key=lambda p: (float(p.split("/")[-2]), os.path.getmtime(p))):
             head = None
             for line in open(f):
