@@ -14,8 +14,8 @@
 # by spherePourBenchmark), LIGGGHTS's hertz model with limitForce on given
 # the coefficient of restitution e_L whose 2 sqrt(5/6) |beta(e_L)| is that
 # c (passed as -var restitution).
-# Asserted: the final mean height of the centres agrees within 2% (exit
-# status 1 otherwise). 2%: the pile is chaotic (one pile's spread under
+# Asserted: the final mean height of the centres agrees within 2%, and
+# every sphere stayed in the box in both codes (exit status 1 otherwise). 2%: the pile is chaotic (one pile's spread under
 # round-off is about 0.2% in either code) and the codes differ by about
 # 0.9% where they are not the same (tangential spring, integrator;
 # README.md has the figures): 2% holds that and no more.
@@ -243,11 +243,21 @@ if [ "$keep" = 1 ]; then
     echo "logs kept in $run (liggghts.out, log.liggghts, ours.out)"
 fi
 
-# The pile height (the last round's): within 2% (see the header)
+# The pile height (the last round's): within 2% (see the header); and every
+# sphere kept in the box in both (ours: at every history line and the end;
+# LIGGGHTS: none lost from its domain)
 echo
+status=0
 if awk -v o="$oZmean" -v l="$lZmean" 'BEGIN { d = (o - l)/l; exit !(d < 0.02 && d > -0.02) }'; then
     echo "PASS: the mean height of the centres agrees with LIGGGHTS's within 2%"
 else
     echo "FAILED: the mean height of the centres differs from LIGGGHTS's by 2% or more"
-    exit 1
+    status=1
 fi
+if [ "$oLost" = 0 ] && [ "$lAtoms" = 1000 ]; then
+    echo "PASS: every sphere stayed in the box in both codes"
+else
+    echo "FAILED: spheres left the box (ours $oLost; LIGGGHTS keeps $lAtoms of 1000)"
+    status=1
+fi
+exit $status

@@ -38,7 +38,8 @@ Description
         RESULT steps=N wall=s stepsPerSecond=x keTrans=J keRot=J
                meanHeight=m maxHeight=m lost=n nan=0|1 damping=c
     (one line). wall is the clock around the stepping loop only, as
-    LIGGGHTS's "Loop time".
+    LIGGGHTS's "Loop time"; lost the spheres whose centre was outside the
+    box at any history line (every --every steps) or at the end.
 
 Usage
     spherePourBenchmark [nSteps] [--dt=s] [--every=n]
@@ -127,6 +128,21 @@ struct state
     int lost = 0;
     bool nan = false;
 };
+
+
+//- Marks the spheres whose centre is outside the box now
+void markOutside(const demSolver& dem, int firstSphere, std::vector<bool>& outside)
+{
+    outside.resize(dem.bodies().size(), false);
+    for (size_t i = firstSphere; i < dem.bodies().size(); ++i)
+    {
+        const vec3& x = dem.bodies()[i].pose.position();
+        if (!(x.x() > 0 && x.x() < W && x.y() > 0 && x.y() < W && x.z() > 0))
+        {
+            outside[i] = true;
+        }
+    }
+}
 
 
 state measure(const demSolver& dem, int firstSphere)
@@ -234,8 +250,11 @@ int run(const options& o)
         s.contactLaw.c_str(), s.overlapMethod.c_str(), o.dt, tcSphere/o.dt, tcSphere, tcWall,
         o.nSteps, o.nSteps*o.dt);
 
+    // Every sphere whose centre left the box at a history line or the end
+    std::vector<bool> everOutside;
     auto history = [&](long n)
     {
+        markOutside(dem, nWalls, everOutside);
         const state st = measure(dem, nWalls);
         std::printf("%8ld %13.6e %13.6e %13.6e %13.6e\n",
             n, st.keTrans, st.keRot, st.meanHeight, st.maxHeight);
@@ -259,7 +278,9 @@ int run(const options& o)
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    const state st = measure(dem, nWalls);
+    state st = measure(dem, nWalls);
+    markOutside(dem, nWalls, everOutside);
+    st.lost = int(std::count(everOutside.begin(), everOutside.end(), true));
     const demSolver::counters& w = dem.work();
     std::printf("\nSummary\n");
     std::printf("  spheres                 %d (+ %d walls)\n", nSpheres, nWalls);
@@ -277,7 +298,7 @@ int run(const options& o)
     std::printf("  kinetic energy          translational %.6e J, rotational %.6e J\n",
         st.keTrans, st.keRot);
     std::printf("  height of the centres   mean %.6e m, max %.6e m\n", st.meanHeight, st.maxHeight);
-    std::printf("  outside the box         %d\n", st.lost);
+    std::printf("  outside the box         %d (at any history line or the end)\n", st.lost);
     std::printf("  NaN                     %s\n", st.nan ? "yes" : "no");
     std::printf("RESULT steps=%ld wall=%.6f stepsPerSecond=%.3f keTrans=%.6e keRot=%.6e"
         " meanHeight=%.6e maxHeight=%.6e lost=%d nan=%d damping=%.12g\n",
