@@ -223,6 +223,9 @@ int run(const options& o)
     // slowest swing seen (a grain perched on two contacts rocking about
     // them, ~0.2 s), whose KE dips through zero at its turning points
     const double restFor = 0.1;
+    // At rest: 1e-6 of the peak, the grains' elastic vibration in their
+    // contacts once settled; a pile still settling is orders of magnitude
+    // above it (the history lines show the drop)
     const double ratioRest = 1e-6;
     double kePeak = 0, restSince = -1, nextPrint = 0;
     bool nan = false;
