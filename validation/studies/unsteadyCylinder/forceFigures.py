@@ -9,16 +9,17 @@ times, later runs winning), and prints over the last N whole lift cycles
 (or from time T): mean drag coefficient, drag amplitude (half of max - min
 per lift cycle, averaged), lift amplitude (likewise) and Strouhal number
 (from the upward zero crossings of the lift, linearly interpolated).
-As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict.
+As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict;
+scales(case) -> (U, D), the case's speed and diameter for the Strouhal
+number (figures(..., U=, D=); the study's by default).
 """
 import glob, os, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
 from immersedDEMCase import caseConstants, number, readDictionary, vector  # noqa: E402
 
-# The study's diameter and speed (makeCase.py), for the Strouhal number of
-# a body-fitted run (its forceCoeffs gives the coefficients); an immersed
-# run's are read from its case
+# The study's diameter and speed (makeCase.py): the Strouhal number's
+# default; scales(case) reads a run's own
 D, U = 0.01, 0.01
 
 
@@ -51,6 +52,17 @@ def _slab(case):
         if len(parts) == 3:
             zs.add(float(parts[2]))
     return (max(zs) - min(zs))*scale
+
+
+def scales(case):
+    """(U, D) of a run: a body-fitted one's forceCoeffs magUInf and lRef,
+    an immersed one's inflow and cylinder (immersedConstants)"""
+    cd = readDictionary(os.path.join(case, "system", "controlDict"))
+    coeffs = cd.get("functions", {}).get("coeffs")
+    if isinstance(coeffs, dict) and coeffs.get("type") == "forceCoeffs":
+        return number(coeffs["magUInf"]), number(coeffs["lRef"])
+    rho, u, d = immersedConstants(case)
+    return u, d
 
 
 def history(case):
@@ -91,7 +103,7 @@ def history(case):
     return t, [rows[x][0] for x in t], [rows[x][1] for x in t]
 
 
-def figures(t, Cd, Cl, tFrom=None, cycles=None):
+def figures(t, Cd, Cl, tFrom=None, cycles=None, U=U, D=D):
     ups = []
     for i in range(1, len(t)):
         if Cl[i - 1] < 0 <= Cl[i]:
@@ -136,7 +148,8 @@ def main():
     if "-cycles" in a:
         cycles = int(a[a.index("-cycles") + 1])
     t, Cd, Cl = history(case)
-    f = figures(t, Cd, Cl, tFrom, cycles)
+    u, d = scales(case)
+    f = figures(t, Cd, Cl, tFrom, cycles, U=u, D=d)
     print("%s: cycles %d (t %.3f to %.3f) CdMean %.4f CdAmp %.5f ClAmp %.4f St %.4f ClAmpSpread %.4f"
           % (case, f["cycles"], f["from"], f["to"], f["CdMean"], f["CdAmp"], f["ClAmp"], f["St"], f["ClAmpSpread"]))
 
