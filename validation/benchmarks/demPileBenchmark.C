@@ -26,7 +26,7 @@ Description
     second, pair evaluations, mean time per pair evaluation (overlap
     geometry and contact law), the kinetic energy's peak and final ratio,
     whether any body left the box (centroid outside the walls'
-    half-spaces), any NaN.
+    half-spaces, checked at every history line and at the end), any NaN.
 
     With --check: PASS/FAIL lines for the acceptance criteria and a
     non-zero exit status unless all three hold:
@@ -223,9 +223,26 @@ int run(const options& o)
     // slowest swing seen (a grain perched on two contacts rocking about
     // them, ~0.2 s), whose KE dips through zero at its turning points
     const double restFor = 0.1;
+    // At rest: 1e-6 of the peak, the grains' elastic vibration in their
+    // contacts once settled; a pile still settling is orders of magnitude
+    // above it (the history lines show the drop)
     const double ratioRest = 1e-6;
     double kePeak = 0, restSince = -1, nextPrint = 0;
     bool nan = false;
+    // The bodies whose centre left the box, at any time checked (every
+    // history line and the end)
+    std::vector<bool> left(dem.bodies().size(), false);
+    auto checkInside = [&]
+    {
+        for (size_t i = nWalls; i < dem.bodies().size(); ++i)
+        {
+            const vec3& x = dem.bodies()[i].pose.position();
+            if (!(x.x() > 0 && x.x() < W && x.y() > 0 && x.y() < W && x.z() > 0))
+            {
+                left[i] = true;
+            }
+        }
+    };
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     auto wall = [&]
@@ -260,6 +277,7 @@ int run(const options& o)
                 dem.contacts().size(), wall());
             std::fflush(stdout);
             nextPrint += 0.05;
+            checkInside();
         }
         if (atRest) break;
     }
@@ -268,6 +286,7 @@ int run(const options& o)
 
     // Final state
     const double keFinal = dem.kineticEnergy();
+    checkInside();
     int outside = 0;
     for (size_t i = nWalls; i < dem.bodies().size(); ++i)
     {
@@ -277,7 +296,7 @@ int run(const options& o)
         {
             nan = true;
         }
-        if (!(x.x() > 0 && x.x() < W && x.y() > 0 && x.y() < W && x.z() > 0))
+        if (left[i])
         {
             ++outside;
         }
@@ -301,7 +320,7 @@ int run(const options& o)
         double(w.queries)/std::max(1L, w.pairEvaluations));
     std::printf("  kinetic energy          peak %.4e J, final %.4e J, ratio %.3e\n",
         kePeak, keFinal, ratio);
-    std::printf("  bodies outside the box  %d\n", outside);
+    std::printf("  bodies outside the box  %d (at any history time or the end)\n", outside);
     std::printf("  NaN                     %s\n", nan ? "yes" : "no");
 
     if (!o.check)
@@ -311,7 +330,7 @@ int run(const options& o)
     const bool rest = kePeak > 0 && keFinal < ratioRest*kePeak;
     std::printf("\n%s: at rest (KE_final/KE_peak = %.3e < %.0e)\n",
         rest ? "PASS" : "FAIL", ratio, ratioRest);
-    std::printf("%s: no body left the box (%d outside)\n", outside == 0 ? "PASS" : "FAIL", outside);
+    std::printf("%s: no body left the box at any history time (%d did)\n", outside == 0 ? "PASS" : "FAIL", outside);
     std::printf("%s: no NaN\n", nan ? "FAIL" : "PASS");
     return rest && outside == 0 && !nan ? 0 : 1;
 }

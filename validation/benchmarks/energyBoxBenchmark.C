@@ -188,8 +188,11 @@ int main(int argc, char* argv[])
             std::printf("%-10s dt %.3g s, %ld steps (%ld with contact), worst drift %.3e, final %.3e, CPU %.0f s\n",
                 law.c_str(), dt, steps, contactSteps, worst, last, cpuSeconds() - c0);
             std::fflush(stdout);
-            // The potential law's total energy within 0.1% (issue 19), with
-            // contacts at most steps
+            // The potential law's total energy within 0.1% (issue 19's
+            // target; measured 0.086% worst over 1e5 steps, and the
+            // integrator's in-contact swing about the conserved energy is
+            // +-2e-4: studies/energyBox), with contacts at most steps (a
+            // box where little touches tests nothing)
             if (check && law == "potential" && (!(worst < 1e-3) || contactSteps < steps/2))
             {
                 std::printf("FAIL: potential law, worst drift %.3e (limit 1e-3), %ld of %ld steps with contact (at least half)\n",

@@ -23,13 +23,23 @@ Description
         dx = 0.2 mm sin(7919 y0 + 3001 z0),  dy = 0.2 mm sin(6007 x0 + 4001 z0)
     (x0, y0, z0 the lattice point in metres).
 
+    The damping has the same form on both sides: the normal force
+        f_n = max(0, 4/3 E* sqrt(R*) delta^(3/2) + c sqrt(m* S_n) v_n)
+    and the tangential damping c sqrt(m* S_t), with c = c(0.5, 3/2) of
+    restitutionCalibration (a head-on rebound of exactly 0.5). LIGGGHTS's
+    hertz model is that form with c = 2 sqrt(5/6) |beta|,
+    beta = ln e_L/sqrt(ln^2 e_L + pi^2), and limitForce on (no
+    attraction): compareLiggghts.sh gives it the e_L whose c is this one,
+    from the damping printed here.
+
     Prints the setup, a history every 2500 steps as LIGGGHTS's thermo
     (step, translational and rotational kinetic energy, mean and maximum
     height of the centres) and a summary; its last line, for scripts:
         RESULT steps=N wall=s stepsPerSecond=x keTrans=J keRot=J
-               meanHeight=m maxHeight=m lost=n nan=0|1
+               meanHeight=m maxHeight=m lost=n nan=0|1 damping=c
     (one line). wall is the clock around the stepping loop only, as
-    LIGGGHTS's "Loop time".
+    LIGGGHTS's "Loop time"; lost the spheres whose centre was outside the
+    box at any history line (every --every steps) or at the end.
 
 Usage
     spherePourBenchmark [nSteps] [--dt=s] [--every=n]
@@ -43,6 +53,7 @@ Usage
 #include "halfSpaceShape.H"
 #include "sphereShape.H"
 #include "hertzMindlinContactLaw.H"
+#include "restitutionCalibration.H"
 #include "coreError.H"
 
 #include <algorithm>
@@ -117,6 +128,21 @@ struct state
     int lost = 0;
     bool nan = false;
 };
+
+
+//- Marks the spheres whose centre is outside the box now
+void markOutside(const demSolver& dem, int firstSphere, std::vector<bool>& outside)
+{
+    outside.resize(dem.bodies().size(), false);
+    for (size_t i = firstSphere; i < dem.bodies().size(); ++i)
+    {
+        const vec3& x = dem.bodies()[i].pose.position();
+        if (!(x.x() > 0 && x.x() < W && x.y() > 0 && x.y() < W && x.z() > 0))
+        {
+            outside[i] = true;
+        }
+    }
+}
 
 
 state measure(const demSolver& dem, int firstSphere)
@@ -216,13 +242,19 @@ int run(const options& o)
         nSpheres, radius*1e3, density, nSide, spacing*1e3);
     std::printf("  box %g x %g mm, 5 plane walls; Y = %g Pa, nu = %g, e = %g, mu = %g\n",
         W*1e3, W*1e3, m.youngsModulus, m.poissonsRatio, m.restitution, m.friction);
+    const double damping = restitutionCalibration::damping(m.restitution, 1.5);
+    std::printf("  damping c(e, 3/2) = %.12g: f_n = max(0, 4/3 E* sqrt(R*) delta^1.5 + c sqrt(m* S_n) v_n)\n",
+        damping);
     std::printf("  law %s, overlap %s; dt = %g s = t_c/%.1f (sphere-sphere t_c %.3g s at 0.5 m/s;"
         " sphere-wall %.3g s); %ld steps = %g s\n\n",
         s.contactLaw.c_str(), s.overlapMethod.c_str(), o.dt, tcSphere/o.dt, tcSphere, tcWall,
         o.nSteps, o.nSteps*o.dt);
 
+    // Every sphere whose centre left the box at a history line or the end
+    std::vector<bool> everOutside;
     auto history = [&](long n)
     {
+        markOutside(dem, nWalls, everOutside);
         const state st = measure(dem, nWalls);
         std::printf("%8ld %13.6e %13.6e %13.6e %13.6e\n",
             n, st.keTrans, st.keRot, st.meanHeight, st.maxHeight);
@@ -246,7 +278,9 @@ int run(const options& o)
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    const state st = measure(dem, nWalls);
+    state st = measure(dem, nWalls);
+    markOutside(dem, nWalls, everOutside);
+    st.lost = int(std::count(everOutside.begin(), everOutside.end(), true));
     const demSolver::counters& w = dem.work();
     std::printf("\nSummary\n");
     std::printf("  spheres                 %d (+ %d walls)\n", nSpheres, nWalls);
@@ -264,12 +298,12 @@ int run(const options& o)
     std::printf("  kinetic energy          translational %.6e J, rotational %.6e J\n",
         st.keTrans, st.keRot);
     std::printf("  height of the centres   mean %.6e m, max %.6e m\n", st.meanHeight, st.maxHeight);
-    std::printf("  outside the box         %d\n", st.lost);
+    std::printf("  outside the box         %d (at any history line or the end)\n", st.lost);
     std::printf("  NaN                     %s\n", st.nan ? "yes" : "no");
     std::printf("RESULT steps=%ld wall=%.6f stepsPerSecond=%.3f keTrans=%.6e keRot=%.6e"
-        " meanHeight=%.6e maxHeight=%.6e lost=%d nan=%d\n",
+        " meanHeight=%.6e maxHeight=%.6e lost=%d nan=%d damping=%.12g\n",
         w.steps, seconds, w.steps/std::max(seconds, 1e-12), st.keTrans, st.keRot,
-        st.meanHeight, st.maxHeight, st.lost, st.nan ? 1 : 0);
+        st.meanHeight, st.maxHeight, st.lost, st.nan ? 1 : 0, damping);
     return st.nan ? 1 : 0;
 }
 

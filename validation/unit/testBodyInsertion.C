@@ -129,6 +129,8 @@ TEST(bodyInsertion, volumeFractionReachedWithinTwoPercent)
         s.seed = 3;
         const insertionReport r = bodyInsertion::insert(dem, t, s);
         EXPECT_TRUE(r.complete) << r.summary();
+        // 2%: bodies come whole; the largest (r 3.6 mm) is 0.9% of the
+        // target at phi 0.1, so the last one placed misses by about that
         EXPECT_NEAR(r.volumeFraction(), phi, 0.02*phi) << r.summary();
         // Measured from the bodies themselves
         double V = 0;
@@ -140,7 +142,7 @@ TEST(bodyInsertion, volumeFractionReachedWithinTwoPercent)
             EXPECT_GE(x.z() - sphereRadius(b), -1e-15);
             EXPECT_LE(x.z() + sphereRadius(b), 0.08 + 1e-15);
         }
-        EXPECT_NEAR(V/(M_PI*0.03*0.03*0.08), phi, 0.02*phi);
+        EXPECT_NEAR(V/(M_PI*0.03*0.03*0.08), phi, 0.02*phi);   // as the report's
     }
 }
 
@@ -357,6 +359,7 @@ TEST(sizeDistribution, meanAndSpreadOfEachKind)
         const auto m = moments(d, 4);
         const double mean = (0.9 + 2*1.0 + 1.2)/4;
         const double var = (0.81 + 2*1.0 + 1.44)/4 - mean*mean;
+        // 5 standard deviations of the sample's mean and spread
         EXPECT_NEAR(m[0], mean, 5*std::sqrt(var/n));
         EXPECT_NEAR(m[1], std::sqrt(var), 5*std::sqrt(var/(2.0*n)));
         EXPECT_DOUBLE_EQ(d.minimum(), 0.9);
@@ -385,6 +388,7 @@ TEST(bodyInsertion, randomOrientationIsUniformAndVelocitySpreadHasItsRange)
     }
     for (int i = 0; i < 3; ++i)
     {
+        // 5 standard deviations of the sample means (var(z) = 1/3)
         EXPECT_NEAR(s[i]/n, 0, 5*std::sqrt(1.0/3/n));
         // var(z^2) = 1/5 - 1/9
         EXPECT_NEAR(s2[i]/n, 1.0/3, 5*std::sqrt((0.2 - 1.0/9)/n));
@@ -407,13 +411,15 @@ TEST(bodyInsertion, randomOrientationIsUniformAndVelocitySpreadHasItsRange)
         mean += b.velocity/500;
         EXPECT_EQ(b.angularVelocity, vec3(1, 0, 0));
     }
+    // the extremes of 500 uniform draws: within 5% of the range of its
+    // ends but with a chance 0.95^500 = 7e-12
     EXPECT_NEAR(lo.x(), -0.1, 0.01);
     EXPECT_NEAR(hi.x(), 0.1, 0.01);
     EXPECT_NEAR(lo.y(), -0.2, 0.02);
     EXPECT_NEAR(hi.y(), 0.2, 0.02);
     EXPECT_EQ(lo.z(), -0.5);
     EXPECT_EQ(hi.z(), -0.5);
-    EXPECT_NEAR(mean.x(), 0, 5*0.1/std::sqrt(3.0*500));
+    EXPECT_NEAR(mean.x(), 0, 5*0.1/std::sqrt(3.0*500));    // 5 standard deviations
 }
 
 

@@ -213,6 +213,8 @@ TEST(contactReuse, volumeGradientsMatchFiniteDifferences)
         const double Vm = engine->evaluate(*ico, pA, *ico, bodyPose(pB.position() - e*dir, qIco), o).volume();
         const double fd = (Vp - Vm)/(2*e);
         const double predicted = -r.areaVector.dot(dir);
+        // 3%: the difference quotient of the octree's volume at a step of
+        // 5% of the depth (leaves of d/80 quantise V) against S
         EXPECT_NEAR(fd, predicted, 0.03*r.areaVector.norm()) << "translation along " << dir.transpose();
     }
     for (const vec3& axis : {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)})
@@ -384,7 +386,7 @@ TEST(contactReuse, potentialLawReused)
     std::cout << c << std::endl;
     EXPECT_GT(c.reused, 0);
     EXPECT_LT(c.fullEvaluations, n);
-    EXPECT_LT(c.maxForceError, 0.01);
+    EXPECT_LT(c.maxForceError, 0.01);   // twice the volume target: the potential's w'(V) amplifies it
 }
 
 

@@ -53,6 +53,7 @@ void expectSameAsExact
     double tol, const std::string& what
 )
 {
+    // tol: the caller's; two exact methods agree to round-off
     const contactGeometry e = exactOverlap().evaluate(A, pA, B, pB, {});
     overlapSettings s;
     s.areaVectorNormal = true;
@@ -146,7 +147,7 @@ TEST(convexOverlap, cubesAndIcosahedraAtRandomPosesMatchExact)
         }
     }
     std::cout << contacts << " of 48 poses in contact" << std::endl;
-    EXPECT_GT(contacts, 30);
+    EXPECT_GT(contacts, 30);    // enough of the 48 random poses test something
 }
 
 
@@ -245,8 +246,8 @@ TEST(convexOverlap, slivers)
         std::cout << rel << "  " << ve/V << "  " << c.volume()/V << "  " << v.volume()/V
             << "  " << vo/V << std::endl;
         ASSERT_EQ(c.regions.size(), 1u);
-        EXPECT_NEAR(c.volume(), ve, 0.01*ve);
-        EXPECT_NEAR(c.volume(), V, 1e-6*V);
+        EXPECT_NEAR(c.volume(), ve, 0.01*ve);   // see the exact method's own rounding below
+        EXPECT_NEAR(c.volume(), V, 1e-6*V);     // the clipped polyhedron is the box: round-off
         EXPECT_EQ(v.volume(), c.volume());
         const contactRegion& r = c.regions[0];
         const vec3 S = q*vec3(wy*d, wx*d, wx*wy);
@@ -350,6 +351,8 @@ TEST(convexOverlap, areaVectorAndMomentAreTheVolumeGradient)
         const double dVdt = (volumeAt(vec3::Zero(), t*u) - volumeAt(vec3::Zero(), -t*u))/(2*t);
         std::cout << "axis " << k << ": -dV/dx " << -dVdx << " S " << r.areaVector[k]
             << "; -dV/dtheta " << -dVdt << " M " << r.areaMoment[k] << std::endl;
+        // 1e-4: the central differences' error (steps 1e-7 m, 1e-5 rad,
+        // second order) and their round-off
         EXPECT_NEAR(r.areaVector[k], -dVdx, 1e-4*S) << "axis " << k;
         EXPECT_NEAR(r.areaMoment[k], -dVdt, 1e-4*S*std::sqrt(S)) << "axis " << k;
     }
@@ -368,7 +371,7 @@ TEST(convexOverlap, nonConvexPairsStayOnTheOctree)
     ASSERT_FALSE(g.regions.empty());
     EXPECT_GT(g.leaves, 0);
     const double ve = exactOverlap().evaluate(l, pA, cube, pB, {}).volume();
-    EXPECT_NEAR(g.volume(), ve, 0.01*ve);
+    EXPECT_NEAR(g.volume(), ve, 0.01*ve);   // the octree's accuracy on a non-convex body
 }
 
 
@@ -440,7 +443,7 @@ TEST(convexOverlap, cubeOnAFlatPartOfAWallMesh)
         EXPECT_EQ(c.leaves, 0);
         EXPECT_NEAR(c.volume(), inWall, 1e-9*inWall);
         EXPECT_LT((c.regions[0].areaVector - (cubeFirst ? 1 : -1)*Sin).norm(), 1e-9*Sin.norm());
-        EXPECT_NEAR(c.volume(), o.volume(), 0.01*inWall);
+        EXPECT_NEAR(c.volume(), o.volume(), 0.01*inWall);   // the octree's 1%
         // Pointing from the first body into the second: down into the
         // corner for the cube first
         const vec3 into(-1, -1, -1);
@@ -470,7 +473,7 @@ TEST(convexOverlap, cubeOnAFlatPartOfAWallMesh)
         octree.convexExact = false;
         const contactGeometry o = virtualMeshOverlap().evaluate(cube, sides, tank, wall, octree);
         EXPECT_GT(o.leaves, 0);
-        EXPECT_NEAR(o.volume(), planes, 0.01*planes);
+        EXPECT_NEAR(o.volume(), planes, 0.01*planes);       // the octree's 1%
         // Normals: each region's along its wall's
         for (const contactRegion& r : g.regions)
         {
@@ -526,6 +529,7 @@ TEST(convexOverlap, cubeAgainstTheInsideOfAFacetedTube)
     const contactGeometry o = virtualMeshOverlap().evaluate(inside, wall, cube, p, fine);
     std::cout << "tube: exact " << g.volume() << ", octree " << o.volume() << std::endl;
     ASSERT_EQ(o.regions.size(), 1u);
+    // the octree's 1% at level 5; 0.02 (about a degree) its normal's
     EXPECT_NEAR(g.volume(), o.volume(), 0.01*g.volume());
     EXPECT_LT((g.regions[0].normal - o.regions[0].normal).norm(), 0.02);
     // The wall's S points from the wall into the cube, towards the axis
@@ -578,5 +582,5 @@ TEST(convexOverlap, slabThroughABlockKeepsItsAreaMoment)
         };
         fd[i] = (turned(h) - turned(-h))/(2*h);
     }
-    EXPECT_LT((fd + r.areaMoment).norm(), 1e-6*r.areaMoment.norm());
+    EXPECT_LT((fd + r.areaMoment).norm(), 1e-6*r.areaMoment.norm());   // the differences' error
 }

@@ -89,6 +89,8 @@ TEST(demBounds, fastBodyBouncesOffAPlane)
     const rigidBody& b = dem.bodies()[1];
     EXPECT_GT(b.velocity.z(), 0);
     EXPECT_GT(zMin, 0) << "the ball's centre went through the plane";
+    // restitution 1: not faster (0.1% for the integrator's energy error),
+    // and 2% for a contact at 1000 m/s resolved in few steps
     EXPECT_LT(b.velocity.norm(), v*1.001);
     EXPECT_GT(b.velocity.norm(), v*0.98);
 }

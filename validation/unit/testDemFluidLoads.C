@@ -63,6 +63,8 @@ TEST(demFluidLoads, addedMassDampingRelaxesTowardsTheReference)
     const double T = 2e-3;
     dem.advance(T);
     const double expected = 0.1 + 0.1*std::exp(-c*T/m);
+    // 1e-4: the sub-steps' discretisation of the exponential (dt 1e-6 s
+    // against the time constant m/c = 2 ms)
     EXPECT_NEAR(b.velocity.x(), expected, 1e-4*expected);
     EXPECT_NEAR(b.appliedFluidForce(dem.time()).x(), -c*(b.velocity.x() - 0.1), 1e-12);
 }
@@ -150,6 +152,8 @@ TEST(demFluidLoads, elasticBounceKeepsItsSpeedWithTheAddedMass)
     b.fluid.referenceVelocity = b.velocity;
     dem.advance(1e-2);
     EXPECT_GT(b.pose.position().z(), 0.0052);
+    // 1e-3: restitution 1 exactly in the law; the contact's stepping
+    // (2e-6 s) loses less; the damper of before lost half
     EXPECT_NEAR(b.velocity.z(), 0.3, 1e-3*0.3);
 }
 
@@ -167,6 +171,7 @@ TEST(demFluidLoads, angularDampingRelaxesTheSpinTowardsTheReference)
     const double T = 2e-3;
     dem.advance(T);
     const double expected = 1 + 2*std::exp(-D*T/I);
+    // 1e-4: as the velocity's above (time constant I/D = 1.25 ms)
     EXPECT_NEAR(b.angularVelocity.y(), expected, 1e-4*expected);
     EXPECT_NEAR(b.angularVelocity.x(), 0, 1e-14);
 }

@@ -310,6 +310,8 @@ TEST(demProcesses, pairOwnersAreSpreadAndFixed)
     }
     for (const int c : count)
     {
+        // 15%: a hash's spread over 780 pairs (one standard deviation of
+        // a third's count is 13, 5%): even, not one process with most
         EXPECT_GT(c, 780/3*0.85);
         EXPECT_LT(c, 780/3*1.15);
     }

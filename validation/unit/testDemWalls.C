@@ -36,7 +36,7 @@ double restingHeight(demSolver& dem, double z0)
     b.pose = bodyPose(vec3(0.001, 0.002, z0), quat::Identity());
     const int i = dem.addBody(b);
     dem.advance(0.3);
-    EXPECT_LT(dem.bodies()[i].velocity.norm(), 1e-3);
+    EXPECT_LT(dem.bodies()[i].velocity.norm(), 1e-3);   // at rest after 0.3 s (falling 1 mm reaches 0.14 m/s)
     return dem.bodies()[i].pose.position().z();
 }
 
@@ -66,6 +66,8 @@ TEST(demWalls, planeAndOpenMeshCarryTheSameSphere)
     const double m = rho*4.0/3.0*M_PI*R*R*R;
     const double Ystar = 1/(2*(1 - 0.09)/1e6);     // both sides "soft"
     const double delta = std::sqrt(m*9.81*R/(Ystar*M_PI*R));
+    // 5%: the volume law's static overlap is this estimate to leading
+    // order in delta/R (the lens's volume pi R delta^2 its first term)
     EXPECT_NEAR((R - zPlane)/delta, 1, 0.05) << "plane overlap " << R - zPlane;
     EXPECT_NEAR((R - zMesh)/delta, 1, 0.05) << "mesh overlap " << R - zMesh;
 }

@@ -103,6 +103,8 @@ TEST(exactOverlap, rotatedBoxesAgreeWithVirtualMesh)
     ASSERT_EQ(vm.regions.size(), 1u);
     std::cout << "rotated boxes: exact " << ex.volume() << ", virtualMesh " << vm.volume()
         << " (rel " << relErr(vm.volume(), ex.volume()) << ")" << std::endl;
+    // 0.5%: the virtual mesh's accuracy at its default resolution (the
+    // contact resolution tolerance); exact is the reference here
     EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.005);
     // A's surface inside B is all on its top face: the normal is +z
     EXPECT_LT((ex.regions[0].normal - vec3::UnitZ()).norm(), 1e-9);
@@ -133,8 +135,11 @@ TEST(exactOverlap, icospheresMatchVirtualMeshAndConvergeToTheLens)
     std::cout << "icospheres level 4: lens " << lens.volume() << ", exact " << ex.volume()
         << " (rel " << err4 << "), virtualMesh " << vm.volume()
         << " (rel to exact " << relErr(vm.volume(), ex.volume()) << ")" << std::endl;
-    EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.005);
+    EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.005);     // as above
     EXPECT_LT(ex.volume(), lens.volume());
+    // 0.5 degree, 1e-3 R: the facets of a level-4 icosphere (edges R/13)
+    // tilt the exact polyhedral lens's normal and move its centroid by
+    // that much against the spheres'
     EXPECT_LT(angleDeg(ex.regions[0].normal, c2 - c1), 0.5);
     EXPECT_LT((ex.regions[0].point - lens.regions[0].point).norm(), 1e-3*R);
 
@@ -149,11 +154,11 @@ TEST(exactOverlap, icospheresMatchVirtualMeshAndConvergeToTheLens)
     const double err6 = relErr(ex6.volume(), lens.volume());
     std::cout << "icospheres level 6: exact " << ex6.volume() << " (rel " << err6
         << "), area rel " << relErr(ex6.regions[0].area, lens.regions[0].area) << std::endl;
-    EXPECT_LT(err6, 0.01);
+    EXPECT_LT(err6, 0.01);      // the level-6 facets' own deficit in the lens
     EXPECT_GT(err4/err6, 10);       // second order: 16 for exact halvings
     EXPECT_LT(angleDeg(ex6.regions[0].normal, c2 - c1), 0.5);
     EXPECT_LT((ex6.regions[0].point - lens.regions[0].point).norm(), 1e-3*R);
-    EXPECT_LT(relErr(ex6.regions[0].area, lens.regions[0].area), 0.01);
+    EXPECT_LT(relErr(ex6.regions[0].area, lens.regions[0].area), 0.01);   // as the volume's
 }
 
 
@@ -197,6 +202,8 @@ TEST(exactOverlap, threadedToriGiveTwoRegions)
         << ex.regions[1].volume << ") in " << 1e3*tEx << " ms; virtualMesh "
         << vm.volume() << " in " << vm.regions.size() << " regions (rel "
         << relErr(vm.volume(), ex.volume()) << ") in " << 1e3*tVm << " ms" << std::endl;
+    // 1%: the virtual mesh on curved, non-convex tori, twice its 0.5%
+    // on the boxes and spheres above
     EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.01);
 }
 
@@ -238,7 +245,7 @@ TEST(exactOverlap, lBlockAgainstBoxGivesTwoRegions)
         << " in " << vm.regions.size() << " regions (rel "
         << relErr(vm.volume(), ex.volume()) << ")" << std::endl;
     EXPECT_EQ(vm.regions.size(), 2u);
-    EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.01);
+    EXPECT_LT(relErr(vm.volume(), ex.volume()), 0.01);  // as the tori's: two regions, edges
 }
 
 

@@ -69,6 +69,7 @@ TEST(fluidImpedance, sphereLimits)
     // Steady limit (q = a/sqrt(nu dt) = 1e-6): Stokes' drag and torque
     const double dtSlow = a*a/nu*1e12;
     const auto slow = fluidImpedance::estimate(sphereSize(a), rho, nu, dtSlow);
+    // 2e-6: the history term still there at q = 1e-6 (a factor 1 + q)
     EXPECT_NEAR(slow.damping, 6*pi*mu*a, 2e-6*6*pi*mu*a);
     EXPECT_NEAR(slow.angularDamping, 8*pi*mu*a*a*a, 2e-6*8*pi*mu*a*a*a);
     // The added mass of a sphere, half its displaced fluid, at any step;
@@ -105,7 +106,7 @@ TEST(fluidImpedance, sphereLimits)
     onMesh.cellSize = 0.4*a;
     const auto m = fluidImpedance::estimate(onMesh, rho, nu, dtSlow);
     EXPECT_NEAR(m.addedMass, 0.5*rho*4.0/3*pi*std::pow(1.2*a, 3), 1e-12*m.addedMass);
-    EXPECT_NEAR(m.damping, 6*pi*mu*1.2*a, 2e-6*m.damping);
+    EXPECT_NEAR(m.damping, 6*pi*mu*1.2*a, 2e-6*m.damping);   // q = 1e-6, as above
     // and a round body's rotation still pushes no fluid aside
     EXPECT_NEAR(m.addedInertia, 0, 1e-12*rho*V*a*a);
 }
@@ -130,7 +131,7 @@ TEST(fluidImpedance, lensesAndTheSolidFractionAround)
     (
         fluidImpedance::surroundingFraction(1, twelve, false), 12*touching, 1e-12
     );
-    EXPECT_GT(12*touching, 0.3);
+    EXPECT_GT(12*touching, 0.3);    // a floor for "much": 12 lenses, not a sliver
     // The added mass grows with it as Zuber's (1 + 2 phi)/(1 - phi)
     fluidImpedance::bodySize s = sphereSize(1e-3);
     const auto alone = fluidImpedance::estimate(s, 1000, 1e-6, 1e-3);
@@ -147,14 +148,16 @@ TEST(fluidImpedance, cylinderLimits)
     // The added mass of a circular cylinder: its displaced fluid
     const auto fast = fluidImpedance::estimate(cylinderSize(a, L), rho, nu, a*a/nu/1e4);
     EXPECT_NEAR(fast.addedMass, rho*pi*a*a*L, 1e-12*fast.addedMass);
-    // q = 100: K1/K0 -> 1 + 1/(2q): 4 pi mu (q + 1/2) per length
+    // q = 100: K1/K0 -> 1 + 1/(2q): 4 pi mu (q + 1/2) per length; 1e-4:
+    // the expansion's next term, 3/(8 q^2) = 4e-5
     EXPECT_NEAR(fast.damping, 4*pi*mu*(100 + 0.5)*L, 1e-4*fast.damping);
     // Slow (q = 1e-3): q K1(q) -> 1, so 4 pi mu/K0(q); K0 from its series
     // -ln(q/2) - gamma (error q^2 ln q, 7e-6 here)
     const double q = 1e-3, gamma = 0.5772156649015329;
     const auto slow = fluidImpedance::estimate(cylinderSize(a, L), rho, nu, a*a/nu/(q*q));
-    EXPECT_NEAR(slow.damping, 4*pi*mu/(-std::log(q/2) - gamma)*L, 1e-4*slow.damping);
-    // A rotating cylinder: 4 pi mu a^2 per length in the steady limit
+    EXPECT_NEAR(slow.damping, 4*pi*mu/(-std::log(q/2) - gamma)*L, 1e-4*slow.damping);  // over the 7e-6
+    // A rotating cylinder: 4 pi mu a^2 per length in the steady limit;
+    // 1e-3: the step's correction at q = 1e-3 is of order q
     EXPECT_NEAR(slow.angularDamping, 4*pi*mu*a*a*L, 1e-3*slow.angularDamping);
     EXPECT_NEAR(slow.addedInertia, 0, 1e-15);
 }

@@ -158,6 +158,8 @@ TEST(lubrication, gapRadiusOfSpheresPlanesFacesAndMeshes)
     (
         lubrication::curvatureNear(ico, p, x), mat3::Zero(), sp.normal, 10*R
     );
+    // 5%: the curvature read from the facets of a level-4 icosphere (edges
+    // of R/10: their normals' turn estimates 1/R to a few percent)
     EXPECT_NEAR(Rm/R, 1, 0.05);
 }
 
@@ -235,6 +237,8 @@ TEST(lubrication, sphereCoastingToAWallFollowsTheFilm)
         ++checked;
     }
     EXPECT_GT(checked, 10);
+    // 1%: the DEM's sub-steps integrate the film's 1/h against the exact
+    // v(h); without the film (or with m + m_a) the speed is off by more
     EXPECT_LT(worst, 0.01) << "largest relative speed error";
     // It stops in the film (the exact stop: v(h) = 0), never touching
     EXPECT_GT(c.gap(), 0.3*c.cell);
@@ -263,6 +267,8 @@ TEST(lubrication, filmSlowsTheBodyWithItsNominalAddedMass)
         ++checked;
     }
     EXPECT_GT(checked, 10);
+    // 1%: the DEM's sub-steps integrate the film's 1/h against the exact
+    // v(h); without the film (or with m + m_a) the speed is off by more
     EXPECT_LT(worst, 0.01) << "largest relative speed error";
     // It stops where the exact stop of m + 0.5 m is (v(h) = 0), not in the
     // thinner film m + m_a would reach
@@ -438,8 +444,8 @@ TEST(lubrication, footprintOfAFlatFaceFadesAsItTurns)
             1 - 2*R*std::sin(angle)/band,
             1 - (1 - std::cos(angle))/(1 - std::cos(0.05))
         );
-        EXPECT_GT(weight, 0.3);
-        EXPECT_NEAR(turned.footprintArea, weight*4*R*R, 1e-6*R*R) << angle;
+        EXPECT_GT(weight, 0.3);     // the case is meant to test a partial footprint
+        EXPECT_NEAR(turned.footprintArea, weight*4*R*R, 1e-6*R*R) << angle;    // exact: round-off
         EXPECT_NEAR(turned.footprintHeight, R*std::sin(angle), 1e-6*R) << angle;
     }
     EXPECT_EQ(over(*c, 0.06).footprintArea, 0);
@@ -463,6 +469,7 @@ TEST(lubrication, wedgeFilmAgainstTheReynoldsEquation)
     for (int i = 0; i < 3; ++i)
     {
         const auto w = lubrication::wedgeIntegrated(ratio[i]);
+        // the last printed digit of the independent solution (above)
         EXPECT_NEAR(w.normal, normal[i], 1e-3) << ratio[i];
         EXPECT_NEAR(w.tilt, tilt[i], 2e-3) << ratio[i];
         EXPECT_NEAR(w.offset, offset[i], 1e-3) << ratio[i];
@@ -553,6 +560,8 @@ TEST(lubrication, facingCubesSqueezeAndTiltLikePlates)
             1e-3, 4*f.R*f.R, f.R*f.R/3, f.R*f.R/3, f.gap, hAct, 0
         );
         const double Fx = f.B().lubricationForce.x();
+        // 1%: the face-on cubes are parallel plates; what is left is the
+        // step's change of the gap (1e-6 s at 1e-3 m/s)
         EXPECT_NEAR(Fx, plates.normal*1e-3, 0.01*plates.normal*1e-3);
         const double Rstar = 0.5*std::cbrt(3*8*std::pow(f.R, 3)/(4*M_PI));
         EXPECT_GT(Fx, 100*6*M_PI*1e-3*Rstar*Rstar/f.gap*1e-3);
@@ -574,7 +583,9 @@ TEST(lubrication, facingCubesSqueezeAndTiltLikePlates)
         const double inv = 2/f.A().inertia()(1);
         const double expected = 0.2*(1 - plates.tilt1*inv*dt);
         const double relative = f.A().angularVelocity.y() - f.B().angularVelocity.y();
-        EXPECT_LT(expected, 0.99*0.2);
+        EXPECT_LT(expected, 0.99*0.2);      // the film takes a visible share
+        // 2% of the share taken: the implicit step against its linear
+        // estimate 1 - c dt/I
         EXPECT_NEAR(relative, expected, 0.02*(0.2 - expected));
         EXPECT_NEAR(f.A().angularVelocity.x(), 0.1, 1e-9);
         EXPECT_NEAR(f.B().angularVelocity.x(), -0.1, 1e-9);
@@ -619,6 +630,9 @@ TEST(lubrication, facingCubesTiltedAgainstEachOtherKeepTheirFilm)
         mu, 4*R*R, R*R/3, R*R/3, hMean, hAct, 0
     );
     const double Fx = f.B().lubricationForce.x();
+    // 0.6-1.6 of parallel plates at the mean gap: the wedge's own factor
+    // (1.07-1.8 for gap ratios 2-10, test above) with room for the
+    // footprint's cut; the point's film is 100 times less
     EXPECT_GT(Fx, 0.6*plates.normal*u);
     EXPECT_LT(Fx, 1.6*plates.normal*u);
     // The point's film is 100 times less

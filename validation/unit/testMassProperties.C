@@ -34,6 +34,7 @@ mat3 parallelAxis(double m, const vec3& d)
     return m*(d.squaredNorm()*mat3::Identity() - d*d.transpose());
 }
 
+// (tol: the caller's, round-off of exact formulas)
 void expectMatNear(const mat3& A, const mat3& B, double tol)
 {
     for (int i = 0; i < 3; ++i)
@@ -139,6 +140,8 @@ TEST(massProperties, farFromOriginStaysAccurate)
     EXPECT_NEAR((mp.centroid - t).norm(), 0.0, 1e-8);
     for (int i = 0; i < 3; ++i)
     {
+        // 1e-8: round-off of the far translation (moments about a centroid
+        // far from the origin lose digits by cancellation)
         EXPECT_LT(relErr(mp.principalMoments[i], ref.principalMoments[i]), 1e-8);
     }
 }
@@ -188,12 +191,16 @@ TEST(massProperties, icosphereConvergesToSphere)
         {
             errI = std::max(errI, relErr(mp.principalMoments[i], I));
         }
-        // Nearly isotropic
+        // Nearly isotropic (1e-3: the icosahedral faceting's anisotropy,
+        // far below the volume's error)
         EXPECT_LT
         (
             (mp.principalMoments[2] - mp.principalMoments[0])/I, 1e-3
         ) << "level " << level;
 
+        // The faceting's error is second order in the edge: a level
+        // halves the edges and quarters it (3: a quarter with room for the
+        // higher-order terms); at level 5 (edges about R/27) a few 1e-4
         if (level > 1)
         {
             EXPECT_GT(prevErrV/errV, 3.0) << "level " << level;
@@ -221,7 +228,7 @@ TEST(massProperties, icosphereViaTriangleMeshShape)
     {
         EXPECT_LT(relErr(shape.principalMoments()[i], mp.principalMoments[i]), 1e-12);
     }
-    EXPECT_LT(relErr(shape.volume(), 4.0/3.0*M_PI*R*R*R), 1e-2);
+    EXPECT_LT(relErr(shape.volume(), 4.0/3.0*M_PI*R*R*R), 1e-2);  // the faceting's deficit
     EXPECT_NEAR(shape.boundingRadius(), R, 1e-12);
 }
 
@@ -262,6 +269,8 @@ TEST(massProperties, torusConverges)
     const torusErrors coarse = torusError(R, r, 128, 64);
     const torusErrors fine = torusError(R, r, 256, 128);
 
+    // second order in the faceting, as the sphere's: 256 x 128 leaves
+    // well under 1e-3, and doubling both counts quarters it (3: with room)
     EXPECT_LT(fine.V, 1e-3);
     EXPECT_LT(fine.Ixy, 1e-3);
     EXPECT_LT(fine.Izz, 1e-3);
@@ -277,7 +286,7 @@ TEST(massProperties, torusViaTriangleMeshShape)
     const double R = 1.0, r = 0.3;
     const triangleMeshShape shape(primitiveMeshes::torus(R, r, 64, 32), "torus");
     const double V = 2*M_PI*M_PI*R*r*r;
-    EXPECT_LT(relErr(shape.volume(), V), 1e-2);
+    EXPECT_LT(relErr(shape.volume(), V), 1e-2);    // 64 x 32 facets' deficit
     EXPECT_LT(shape.volume(), V);
     // The hole: the centroid (body origin) is outside the body
     EXPECT_FALSE(shape.inside(vec3::Zero()));

@@ -26,6 +26,7 @@ struct modelRun
     double largestAcceleration = 0;     // over the last 20 steps
     double finalVelocity = 0;
     double measured = 0;
+    double measuredWithoutDrag = 0;     // the fit on F + c v
 };
 
 // A 2.5 g/cm3 sphere falling sideways (x) in a model fluid of density 1000
@@ -45,7 +46,7 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
     const double M = kM*rho*V;
     const double W = 1.5*rho*V*9.81;         // its weight in water, sideways
     const double c = W/0.05;                 // terminal velocity 0.05 m/s
-    measuredAddedMass est;
+    measuredAddedMass est, withoutDrag;
     vec3 vPrevious = b.velocity;
     modelRun r;
     for (int n = 0; n < steps; ++n)
@@ -53,6 +54,7 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
         const vec3 a = (b.velocity - vPrevious)/dt;
         const vec3 F = -M*a + vec3(W, 0, 0) - c*b.velocity;
         est.record(F, a, 1e-4);
+        withoutDrag.record(F + c*b.velocity, a, 1e-4);
         const double ma =
             measure ? est.stabilisation(m, Ca*rho*V, 100*rho*V) : Ca*rho*V;
         b.fluid = fluidLoad::held
@@ -70,6 +72,7 @@ modelRun run(const double kM, const double Ca, const bool measure, const int ste
     }
     r.finalVelocity = b.velocity.x();
     r.measured = est.value()/(rho*V);
+    r.measuredWithoutDrag = withoutDrag.value()/(rho*V);
     return r;
 }
 
@@ -81,11 +84,16 @@ TEST(measuredAddedMass, fixedCoefficientBelowTheFluidsAddedMassIsUnstable)
     // M = 7 rho V > m + 2 m_a = 4.5 rho V: the acceleration alternates and
     // grows by |r| = (M - m_a)/(m + m_a) = 1.71 a step
     const modelRun r = run(7, 1, false, 60);
+    // 1e3 m/s2: a stable run never exceeds its first acceleration,
+    // W/(m + m_a) = 4.2 m/s2; the unstable one is 4.2*1.71^58 by the end
     EXPECT_GT(r.largestAcceleration, 1e3);
     // Stable when the fixed coefficient is large enough (4: m + 2 m_a =
     // 10.5 rho V)
     const modelRun s = run(7, 4, false, 400);
-    EXPECT_NEAR(s.finalVelocity, 0.05, 1e-4);
+    // 1e-5 m/s: 0.4 s is 12 time constants (m + M)/c = 0.032 s, which
+    // leave 4e-6 of the approach (2e-7 m/s); a run at half that rate
+    // would be 1e-4 off and fail
+    EXPECT_NEAR(s.finalVelocity, 0.05, 1e-5);
 }
 
 
@@ -95,18 +103,33 @@ TEST(measuredAddedMass, measuredAddedMassSettlesWhatTheCoefficientCannot)
     for (const double kM : {7.0, 30.0, 0.3})
     {
         const modelRun r = run(kM, 1, true, 2000);
-        EXPECT_NEAR(r.finalVelocity, 0.05, 1e-5) << "M = " << kM << " rho V";
-        EXPECT_LT(r.largestAcceleration, 1e-3) << "M = " << kM << " rho V";
+        // 1e-6 m/s and 1e-5 m/s2: 18 time constants leave 1.5e-8 of the
+        // approach (8e-10 m/s, 7e-9 m/s2 for M = 30); a run settling at
+        // half the rate would leave 1.2e-4 of it (6e-6 m/s, 3e-5 m/s2)
+        // and fail
+        EXPECT_NEAR(r.finalVelocity, 0.05, 1e-6) << "M = " << kM << " rho V";
+        EXPECT_LT(r.largestAcceleration, 1e-5) << "M = " << kM << " rho V";
         if (kM > 1)
         {
             // The fluid's own added mass, measured while the body
-            // accelerated from rest; the drag's change (-c dv, dv along
-            // the change of acceleration's opposite while the approach is
-            // smooth) pulls the fit down: 4.1 for 7, 16.6 for 30 (an
-            // oscillation, where it matters, is measured exactly: the
-            // next test). Still above the body's mass (2.5 rho V), so the
-            // measured value is the one in use
-            EXPECT_GT(r.measured, 0.5*kM) << "M = " << kM << " rho V";
+            // accelerated from rest. The drag's change, -c dv = -c a dt,
+            // is in the fitted change of force too: it adds
+            // c dt sum(a da)/sum(da^2) to the fit, negative while the
+            // approach is smooth (a > 0 falling, da < 0), so the fit is
+            // low by the model's drag and not by the estimator: without
+            // the drag's change the same data give M to round-off.
+            // Measured (2026-12-05, the coupling's held load of 677503c):
+            // 4.37 for 7 (0.62 M), 23.0 for 30 (0.77 M); 0.6 M as before
+            // eb881fb, where a changed stabilisation moved the approach
+            // (4.1 for 7 then). An oscillation, where it matters, is
+            // measured exactly: the next test. Above the body's mass
+            // (2.5 rho V), so the measured value is the one in use.
+            EXPECT_NEAR(r.measuredWithoutDrag, kM, 1e-9*kM)    // round-off
+                << "M = " << kM << " rho V";
+            EXPECT_GT(r.measured, 0.6*kM) << "M = " << kM << " rho V";
+            EXPECT_GT(r.measured, 2.5) << "M = " << kM << " rho V";
+            // 1.001: the drag's share can only lower the fit (above);
+            // 0.1% for round-off of the sums
             EXPECT_LT(r.measured, 1.001*kM) << "M = " << kM << " rho V";
         }
     }
@@ -123,7 +146,7 @@ TEST(measuredAddedMass, holdsItsValueWhileTheDataSayNothing)
         const vec3 a(n % 2 ? 1.0 : -1.0, 0, 0);
         est.record(-M*a + vec3(0, 0, 0.3), a, 1e-4);
     }
-    EXPECT_NEAR(est.value(), M, 1e-12);
+    EXPECT_NEAR(est.value(), M, 1e-12);     // exact data: round-off
     // Then a smooth motion with force noise: the changes of acceleration
     // stay below the floor (1e-2 m/s2) once the old ones are forgotten,
     // and the value is held
@@ -132,7 +155,11 @@ TEST(measuredAddedMass, holdsItsValueWhileTheDataSayNothing)
         const vec3 a(0, 1e-4*n, 0);
         est.record(vec3(0, 0, 0.3 + 1e-3*((n*7919) % 13 - 6)), a, 1e-4);
     }
-    EXPECT_GT(est.value(), 0.5*M);
+    // Held: the noisy steps weigh in only while the alternating ones keep
+    // sum(da^2) above the floor (forget 0.8: a few steps), and moved it
+    // by 5e-4 M; 1% bounds that for any draw of the noise (a refit to
+    // the noise, which says nothing of M, lands anywhere)
+    EXPECT_NEAR(est.value(), M, 0.01*M);
     // A force that grows with the acceleration (not an added mass) gives
     // no negative mass
     measuredAddedMass other;
@@ -191,8 +218,12 @@ TEST(measuredAddedMass, forceNoiseThatDoesNotFollowTheAccelerationMeasuresNothin
         const vec3 a(0, 0, n % 2 ? 5.0 : -5.0);
         est.record(vec3(0, 0, 0.015 + 5e-3*noise()) - 1e-2*a, a, 1e-4);
     }
-    EXPECT_NEAR(est.value(true), 1e-2, 2e-3);
-    EXPECT_NEAR(est.stabilisation(1e-4, 2e-4, 1, true), est.value(true), 1e-15);
+    // 5e-4 (5%): each step's force noise (standard deviation of dF
+    // 4e-3 N) over da = 10 m/s2 is 4% of M, the fit weighs about 9
+    // steps (forget 0.8), so 1.4% is one standard deviation; measured
+    // 0.7% for this draw
+    EXPECT_NEAR(est.value(true), 1e-2, 5e-4);
+    EXPECT_NEAR(est.stabilisation(1e-4, 2e-4, 1, true), est.value(true), 1e-15);  // the same number
 }
 
 
@@ -204,7 +235,8 @@ TEST(measuredAddedMass, stabilisationOnlyWhereTheCouplingNeedsIt)
         const vec3 a(n % 2 ? 1.0 : -1.0, 0, 0);
         est.record(-0.01*a, a, 1e-4);
     }
-    ASSERT_NEAR(est.value(), 0.01, 1e-12);
+    ASSERT_NEAR(est.value(), 0.01, 1e-12);  // exact data: round-off
+    // (1e-12 below: the same value passed through min/max)
     // M for a body of 5 g (M above its mass); the floor and the cap bound it
     EXPECT_NEAR(est.stabilisation(0.005, 1e-3, 1), 0.01, 1e-12);
     EXPECT_NEAR(est.stabilisation(0.005, 0.02, 1), 0.02, 1e-12);

@@ -463,6 +463,8 @@ TEST(pairFilter, neighbourListMissesNoContact)
             }
         }
     }
+    // counts, not tolerances: enough overlapping pairs to test; the list
+    // rebuilt now and then (more than twice), not every step (a fifth)
     EXPECT_GT(checked, 1000);
     EXPECT_GT(dem.work().broadPhaseBuilds, 2);
     EXPECT_LT(dem.work().broadPhaseBuilds, steps/5);
@@ -529,6 +531,7 @@ TEST(pairFilter, provenGapsBelowTheReachAreNotContacts)
         ASSERT_TRUE(dem.contacts().empty()) << "step " << k;
     }
     EXPECT_EQ(dem.work().pairEvaluations, 0);
+    // one proof (two if the first is renewed), the other 48+ steps reuse it
     EXPECT_LE(dem.filterWork().proofs, 2);
     EXPECT_GE(dem.filterWork().rejectedByReuse, 48);
 

@@ -260,6 +260,9 @@ TEST(rigidBodyIntegrator, harmonicOscillatorEnergyIsBoundedSecondOrder)
 
     // Velocity Verlet: about (omega dt)^2/8 here, and no secular growth
     // over 100 periods
+    // over 100 periods (0.25 (omega dt)^2: twice the theory's; 0.9: the
+    // last period's error is the largest's, not growing past it; 4 +- 0.2:
+    // second order, halving dt quarters it, the rest the (omega dt)^4 term)
     const double wdt = 2*M_PI*0.01;
     EXPECT_LT(coarse.maxEnergyError, 0.25*wdt*wdt);
     EXPECT_GT(coarse.lastPeriodMaxError, 0.9*coarse.maxEnergyError);
@@ -383,11 +386,16 @@ TEST(rigidBodyIntegrator, torqueFreeAsymmetricBodyConservesEnergyAndMomentum)
             "error %.3e, max |L - L0|/|L0| %.3e, max | |q| - 1 | %.3e\n",
             names[c], r.maxEnergyError, r.maxMomentumError, r.maxQuatNormError
         );
+        // 1e-3: second order at |omega| dt = 0.01 bounds the energy and
+        // momentum errors to about (|omega| dt)^2 times a shape factor,
+        // without drift over the 1e5 steps; 1e-12: |q| renormalised
+        // every step, round-off only
         EXPECT_LT(r.maxEnergyError, 1e-3) << names[c];
         EXPECT_LT(r.maxMomentumError, 1e-3) << names[c];
         EXPECT_LT(r.maxQuatNormError, 1e-12) << names[c];
 
-        // The body really tumbles: its spin axis precesses about L
+        // The body really tumbles: its spin axis precesses about L (0.9:
+        // near it, as a perturbation of 0.1 keeps it)
         EXPECT_GT(b.angularVelocity.normalized().dot(b.angularMomentum().normalized()), 0.9);
     }
 }
@@ -407,6 +415,7 @@ TEST(rigidBodyIntegrator, freeRotorEnergyErrorIsSecondOrder)
         coarse.maxEnergyError, fine.maxEnergyError,
         coarse.maxEnergyError/fine.maxEnergyError
     );
+    // second order: 4, +- 0.4 for the higher-order terms at |w| dt = 0.02
     EXPECT_NEAR(coarse.maxEnergyError/fine.maxEnergyError, 4, 0.4);
 }
 
@@ -477,7 +486,7 @@ TEST(rigidBodyIntegrator, intermediateAxisFlips)
         "(growth rate %.3f 1/s)\n",
         firstFlip, firstFull, minComponent, nFlips, N*dt, lambda
     );
-    EXPECT_LT(minComponent, -0.9);
+    EXPECT_LT(minComponent, -0.9);  // a full flip (to -1 less the perturbation's share)
     EXPECT_GT(firstFlip, 0);
 }
 
@@ -504,6 +513,8 @@ TEST(rigidBodyIntegrator, extremeAxesAreStable)
             "    spin about body axis %d: max angle to L %.3e deg\n",
             axis, maxAngle*180/M_PI
         );
+        // 5 degrees: a perturbation of 1e-4 stays near the axis (a flip
+        // is 180); the stable axes' wobble is of the perturbation's order
         EXPECT_LT(maxAngle, 5*M_PI/180) << "axis " << axis;
     }
 }

@@ -130,6 +130,8 @@ TEST_P(uniformCellsSphereSphere, againstTheAnalyticLens)
     ASSERT_EQ(u.regions.size(), 1u);
     EXPECT_TRUE(finite(u));
     EXPECT_NEAR(u.volume()/ref.volume(), 1, 0.01);
+    // 1 degree and h/8: the sub-volumes (h/16 at L = 4) place the lens's
+    // normal and centroid to about their size
     EXPECT_LT(angleDeg(u.regions[0].normal, ref.regions[0].normal), 1.0);
     EXPECT_LT((u.regions[0].point - ref.regions[0].point).norm(), h/8);
     // An estimate: where the lens is thinner than a sub-volume (its rim)
@@ -151,6 +153,9 @@ TEST_P(uniformCellsSphereSphere, againstTheAnalyticLens)
         << " %, normal " << cellsAngle << " deg, " << c.queries << " queries\n";
     if (frac >= 0.05)
     {
+        // 50%: the original model's stair steps on whole cells; the
+        // check is only that it is the right order (it is the paper's
+        // known error, not a band of ours)
         EXPECT_LT(std::abs(cellsError), 0.5);
     }
     EXPECT_LT(cellsAngle, 90);      // at least the right side
@@ -183,6 +188,8 @@ TEST(uniformCellsOverlap, uniformBoxIntoBox)
     const auto g = uniformOverlap().evaluate(b.A, b.pA, b.B, b.pB, {h, 4});
     ASSERT_EQ(g.regions.size(), 1u);
     EXPECT_TRUE(finite(g));
+    // 1%, 1 degree: as the spheres' (sub-volumes of h/16); 15% of the
+    // area: an estimate from the sub-volume centres near the faces
     EXPECT_NEAR(g.volume()/b.volume(), 1, 0.01);
     EXPECT_LT(angleDeg(g.regions[0].normal, b.normal()), 1.0);
     EXPECT_NEAR(g.regions[0].area/(0.004*0.003), 1, 0.15);
@@ -217,7 +224,7 @@ TEST(uniformCellsOverlap, uniformTwoProngsGiveTwoRegions)
     ASSERT_EQ(g.regions.size(), 2u);
     for (const contactRegion& r : g.regions)
     {
-        EXPECT_NEAR(r.volume/(0.003*0.0005*0.004), 1, 0.01);
+        EXPECT_NEAR(r.volume/(0.003*0.0005*0.004), 1, 0.01);   // as above
         EXPECT_LT(angleDeg(r.normal, vec3::UnitY()), 1.0);
     }
     const auto c = cellsOverlap().evaluate(u, pU, slab, pS, {h, 0});
@@ -273,6 +280,8 @@ TEST(uniformCellsOverlap, noPlaneFallsBackToTheCentreLine)
         ASSERT_EQ(c.regions.size(), 1u);
         EXPECT_TRUE(finite(c));
         EXPECT_LT(angleDeg(c.regions[0].normal, line), 1e-9);
+        // 30%: a sphere smaller than a cell, measured on the cells'
+        // sub-volumes; the check is the normal, the volume only its order
         EXPECT_NEAR(c.volume()/small.volume(), 1, 0.3);
 
         const auto u = uniformOverlap().evaluate(small, pS, box, pB, {h, L});

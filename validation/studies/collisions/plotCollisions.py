@@ -169,6 +169,10 @@ for case, png, title in (("sphere", "sphereSphereForce.png", "Two rubber spheres
                 d = peaks[m] / peaks[r] - 1
                 lines.append("  %s peak against %s: %+.2f%%%s" % (m, r, 100 * d, " (bound 2%)" if m == "virtualMesh" else " (the stair-step)"))
                 if m == "virtualMesh":
+                    # 2%: the study's bound for the virtual mesh against
+                    # the exact or refined reference (README: the force
+                    # history 1.87% with curved leaves, 2.58% with the
+                    # flat planes it replaced)
                     ok &= abs(d) <= 0.02
             elif m == "virtualMesh":
                 lines.append("  %s peak against %s: not checked (no %s run in %s)" % (m, r, r if r not in peaks else m, work))
@@ -198,7 +202,7 @@ else:
     fig.tight_layout(); fig.savefig(os.path.join(out, "arbitraryBodiesTrajectory.png"), dpi=120)
     worst = np.abs(rel).max()
     lines.append("arbitrary case: largest |F_virtualMesh - F_dynamic| over the contact: %.2f%% of the peak" % (100 * worst))
-    ok &= worst <= 0.02
+    ok &= worst <= 0.02     # as the peak's 2% (above)
 
 lines.append("")
 lines.append("wall times [s] (each model's whole Allrun, one after the other on this machine):")

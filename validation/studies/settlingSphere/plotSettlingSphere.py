@@ -14,6 +14,7 @@ not come to rest on the bottom."""
 import os, re, sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
 from immersedDEMData import readTable
+from immersedDEMCase import caseConstants, number
 
 import matplotlib
 matplotlib.use("Agg")
@@ -21,6 +22,9 @@ import matplotlib.pyplot as plt
 
 # ten Cate et al. (2002), Table 1: measured terminal velocity [m/s]
 measured = {"E1": 0.038, "E2": 0.060, "E3": 0.091, "E4": 0.128}
+# 3%: the study's target, about the measurement's own uncertainty (a 0.5%
+# error in either stated density moves the terminal velocity by 2-3%:
+# README)
 tolerance = 0.03
 
 here = os.path.dirname(os.path.abspath(__file__))
@@ -31,8 +35,6 @@ def trajectory(case):
     b = readTable(os.path.join(case, "postProcessing/sphere/0/bodies.dat"))
     return b["time"], b["z"], [-w for w in b["vz"]]
 
-
-R, d = 0.0075, 0.015
 
 
 def bodyFitted():
@@ -69,10 +71,14 @@ fig, ax = plt.subplots(figsize=(7, 4.5))
 for f in fluids:
     case = os.path.join(work, f)
     t, z, w = trajectory(case)
+    R = number(caseConstants(case).bodyEntry("sphere")["radius"])   # the case's
+    d = 2*R
     # The terminal velocity: the largest settling velocity while the sphere
     # is more than a diameter above the bottom (the landing is not part of
     # it); whether it lands and rests: centre within 0.1 mm of R, at rest
     u = max(wi for zi, wi in zip(z, w) if zi > R + d)
+    # at rest: 0.1 mm (the contact's overlap and the sealed wall cells are
+    # far less) and 1 mm/s (against a terminal velocity of 38-128 mm/s)
     rests = abs(z[-1] - R) < 1e-4 and abs(w[-1]) < 1e-3
     ok &= rests
     err = u / measured[f] - 1

@@ -9,11 +9,36 @@ times, later runs winning), and prints over the last N whole lift cycles
 (or from time T): mean drag coefficient, drag amplitude (half of max - min
 per lift cycle, averaged), lift amplitude (likewise) and Strouhal number
 (from the upward zero crossings of the lift, linearly interpolated).
-As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict.
+As a module: history(case) -> (t, Cd, Cl); figures(t, Cd, Cl, ...) -> dict;
+scales(case) -> (U, D), the case's speed and diameter for the Strouhal
+number (figures(..., U=, D=); the study's by default).
 """
 import glob, os, sys
 
-D, U, RHO = 0.01, 0.01, 1000.0
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMCase import caseConstants, number, readDictionary, vector  # noqa: E402
+
+# The study's diameter and speed (makeCase.py): the Strouhal number's
+# default; scales(case) reads a run's own
+D, U = 0.01, 0.01
+
+
+def immersedConstants(case):
+    """(rho, U, D) of an immersed run: rhoInf, the inflow's final speed
+    (0/U's inlet) and the cylinder's diameter (its surface's extent)"""
+    c = caseConstants(case)
+    inlet = readDictionary(os.path.join(case, "0", "U"))["boundaryField"]["inlet"]
+    if "uniformValue" in inlet:
+        table = inlet["uniformValue"]          # table ((t (u v w)) ...)
+        u = vector(table[-1][-1][-1])
+    else:
+        u = vector(inlet["value"][-1])         # uniform (u v w)
+    e = c.bodyEntry("cylinder")
+    scale = number(e.get("scale", "1"))
+    xs = [float(l.split()[1])*scale
+          for l in open(os.path.join(case, "constant", "triSurface", e["file"].strip('"')))
+          if l.strip().startswith("vertex")]
+    return c.rhoFluid, sum(x*x for x in u)**0.5, max(xs) - min(xs)
 
 
 def _slab(case):
@@ -27,6 +52,17 @@ def _slab(case):
         if len(parts) == 3:
             zs.add(float(parts[2]))
     return (max(zs) - min(zs))*scale
+
+
+def scales(case):
+    """(U, D) of a run: a body-fitted one's forceCoeffs magUInf and lRef,
+    an immersed one's inflow and cylinder (immersedConstants)"""
+    cd = readDictionary(os.path.join(case, "system", "controlDict"))
+    coeffs = cd.get("functions", {}).get("coeffs")
+    if isinstance(coeffs, dict) and coeffs.get("type") == "forceCoeffs":
+        return number(coeffs["magUInf"]), number(coeffs["lRef"])
+    rho, u, d = immersedConstants(case)
+    return u, d
 
 
 def history(case):
@@ -50,7 +86,8 @@ def history(case):
         files = glob.glob(os.path.join(case, "postProcessing/bodies/*/bodies*.dat"))
         if not files:
             raise SystemExit("forceFigures: no force history in %s" % case)
-        q = 0.5*RHO*U*U*D*_slab(case)
+        rho, u, d = immersedConstants(case)
+        q = 0.5*rho*u*u*d*_slab(case)
         for f in sorted(files, key=lambda p: (float(p.split("/")[-2]), os.path.getmtime(p))):
             head = None
             for line in open(f):
@@ -66,7 +103,7 @@ def history(case):
     return t, [rows[x][0] for x in t], [rows[x][1] for x in t]
 
 
-def figures(t, Cd, Cl, tFrom=None, cycles=None):
+def figures(t, Cd, Cl, tFrom=None, cycles=None, U=U, D=D):
     ups = []
     for i in range(1, len(t)):
         if Cl[i - 1] < 0 <= Cl[i]:
@@ -111,7 +148,8 @@ def main():
     if "-cycles" in a:
         cycles = int(a[a.index("-cycles") + 1])
     t, Cd, Cl = history(case)
-    f = figures(t, Cd, Cl, tFrom, cycles)
+    u, d = scales(case)
+    f = figures(t, Cd, Cl, tFrom, cycles, U=u, D=d)
     print("%s: cycles %d (t %.3f to %.3f) CdMean %.4f CdAmp %.5f ClAmp %.4f St %.4f ClAmpSpread %.4f"
           % (case, f["cycles"], f["from"], f["to"], f["CdMean"], f["CdAmp"], f["ClAmp"], f["St"], f["ClAmpSpread"]))
 

@@ -13,7 +13,7 @@ backward and 2 outer correctors and of the coarser step with 1 (time shifted so 
 import glob, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from forceFigures import history, figures
+from forceFigures import history, figures, scales
 
 a = sys.argv[1:]
 cycles = int(a[a.index("-cycles") + 1]) if "-cycles" in a else 4
@@ -26,7 +26,8 @@ def settled(immersed, bodyFitted):
     got = {}
     for name, d in (("immersed", immersed), ("body-fitted", bodyFitted)):
         t, Cd, Cl = history(d)
-        got[name] = (figures(t, Cd, Cl, None, cycles), (t, Cd, Cl))
+        u, dd = scales(d)
+        got[name] = (figures(t, Cd, Cl, None, cycles, U=u, D=dd), (t, Cd, Cl))
     keys = ("CdMean", "CdAmp", "ClAmp", "St")
     for name, (f, _) in got.items():
         print("%-12s " % name + " ".join("%s %.5g" % (k, f[k]) for k in keys))
@@ -63,8 +64,9 @@ for d in sorted(glob.glob(os.path.join(work, "*", "*_*"))):
     series = os.path.basename(os.path.dirname(d))
     scheme, dt = os.path.basename(d).rsplit("_", 1)
     t, Cd, Cl = history(d)
+    u, dd = scales(d)
     try:
-        f = figures(t, Cd, Cl, None, cycles)
+        f = figures(t, Cd, Cl, None, cycles, U=u, D=dd)
     except SystemExit as e:
         print("%s: %s" % (d, e))
         continue

@@ -24,10 +24,17 @@ next). The deviation from the fit at every St is in the table.
 """
 import argparse, math, os, sys
 
-RHO_P, RHO_F, D = 2500.0, 1000.0, 0.01      # glass sphere in the makeCase tank
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
+from immersedDEMData import readTable  # noqa: E402
+from immersedDEMCase import caseConstants, number  # noqa: E402
+
+# The case Allrun makes (touchingBodies/makeCase.py: a glass sphere in
+# water), for --startVelocity only, before the case exists; a run's
+# figures take every constant from its case
+RHO_P, RHO_F, D, G = 2500.0, 1000.0, 0.01, 9.81
 
 
-def terminalVelocity(nu, g=9.81):
+def terminalVelocity(nu, g=G, rhoP=RHO_P, rhoF=RHO_F, D=D):
     """Settling speed of the sphere from the standard drag curve
     (Schiller-Naumann with the Newton-regime term), by bisection."""
     lo, hi = 1e-6, 10.0
@@ -35,32 +42,32 @@ def terminalVelocity(nu, g=9.81):
         U = 0.5*(lo + hi)
         Re = U*D/nu
         Cd = 24/Re*(1 + 0.15*Re**0.687) + 0.42/(1 + 42500/Re**1.16)
-        drag = 0.5*RHO_F*U*U*Cd*math.pi*D*D/4
-        weight = (RHO_P - RHO_F)*g*math.pi*D**3/6
+        drag = 0.5*rhoF*U*U*Cd*math.pi*D*D/4
+        weight = (rhoP - rhoF)*g*math.pi*D**3/6
         lo, hi = (U, hi) if drag < weight else (lo, U)
     return U
 
 
 def viscosity(case):
-    text = open(os.path.join(case, "constant/transportProperties")).read()
-    return float(text.split("nu")[-1].split(";")[0])
+    return caseConstants(case).nu
 
 
-def bounce(case, R=0.5*D):
-    """(St, U_in, U_out) of the first impact of the case's sphere"""
-    path = os.path.join(case, "postProcessing/bodies/0/bodies.dat")
-    rows = [l.split() for l in open(path) if not l.startswith("#")]
-    t = [float(r[0]) for r in rows]
-    z = [float(r[4]) for r in rows]
-    vz = [float(r[11]) for r in rows]
-    nu = viscosity(case)
+def bounce(case, body="ball"):
+    """(St, U_in, U_out) of the first impact of the case's sphere; its
+    radius and density, the fluid's density and viscosity from the case"""
+    c = caseConstants(case)
+    R = number(c.bodyEntry(body)["radius"])
+    D = 2*R
+    rhoP, rhoF, nu = c.density(body), c.rhoFluid, c.nu
+    b = readTable(os.path.join(case, "postProcessing/bodies/0/bodies.dat")).where(body=body)
+    t, z, vz = b["time"], b["z"], b["vz"]
     # the impact: the first row (after the start) no longer moving down
     k = next((i for i in range(2, len(z)) if vz[i] >= 0), None)
     near = [-vz[i] for i in range(k if k else len(z)) if z[i] - R < 0.5*D]
     if not near:
         raise SystemExit("%s: the sphere never came within d/2 of the wall" % case)
     Uin = max(near)
-    St = RHO_P*D*Uin/(9*RHO_F*nu)
+    St = rhoP*D*Uin/(9*rhoF*nu)
     if k is None:
         return St, Uin, 0.0
     i0 = min(range(k - 1, min(k + 3, len(z))), key=lambda i: z[i])
@@ -117,6 +124,12 @@ def main():
     if a.check:
         bad = []
         es = []
+        # The bands are issue 15's acceptance (issue 48 asks for the
+        # measured points instead): 0.1, no rebound to be seen below the
+        # measured critical St of about 10; 0.7-1, where the fit is
+        # 0.89-0.98 and the measurements scatter below it; 0.05, the dip
+        # allowed between neighbouring St, which has no measured figure
+        # behind it yet
         for St, Uin, Uout, nu, c in data:
             e = Uout/Uin
             if St < 11 and e >= 0.1:

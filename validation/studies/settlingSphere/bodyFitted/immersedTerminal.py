@@ -37,4 +37,7 @@ for f in sorted(bf):
     d = ui/ut - 1
     worst = max(worst, abs(d))
     print('%-5s  %20.5f  %10.3f  %19.4f  %18.5f  %+9.2f%%' % (f, ut, n, ib[f], ui, 100*d))
+# 2%: issue 18's target for the immersed sphere against the body-fitted
+# one; the body-fitted drag moved by about 0.5% from level 3 to 4
+# (README), so the reference's own error is a quarter of the band
 sys.exit(0 if worst <= 0.02 else 1)

@@ -9,7 +9,10 @@ The case is a quarter tank (symmetry planes x = 0 and y = 0): the patch
 group 'cube' is HALF a cube (y >= 0); x and z components are doubled here
 (y components are meaningless for the half body and are dropped).
 """
-import argparse, bisect, csv, math, os, re
+import argparse, bisect, csv, math, os, re, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..", "src", "python"))
+from immersedDEMCase import number, readDictionary  # noqa: E402
 
 ap = argparse.ArgumentParser(description="forces and parting estimates of the body-fitted case")
 ap.add_argument("case", nargs="?", help="case directory (default WORK/bfcase)")
@@ -20,10 +23,14 @@ args = ap.parse_args()
 case = args.case or os.path.join(args.work, "bfcase")
 out = args.out or os.path.join(args.work, "bf_force.csv")
 ibcsv = args.ib or os.path.join(args.work, "ib_history.csv")
+# The body-fitted case's viscosity; its density (pimpleFoam's kinematic
+# pressure has none) and the cubes' are those of the immersed twin
+# (makeCase.py: water, glass)
 RHO = 1000.0
-MU = 1e-3
-A = 0.010        # cube side
-H0 = 1e-4        # initial gap
+MU = RHO*number(readDictionary(os.path.join(case, "constant", "transportProperties"))["nu"])
+RHO_CUBE = 2500.0
+A = 0.010        # cube side (makeBF.py)
+H0 = 1e-4        # initial gap (makeBF.py)
 
 
 def read_forces(path):
@@ -156,7 +163,7 @@ def parting_inertia(tt, FF, C, m, h0=H0, h1=1e-3, dt=1e-6):
 
 
 C_theory = 0.4217 * MU * A ** 4
-m = 2500 * A ** 3
+m = RHO_CUBE * A ** 3
 print("\nsqueeze film: C = 0.4217 mu a^4 = %.4g N s m (4.8e-12 also shown)" % C_theory)
 print("target int F dt: h -> 1 mm at %.4g N s, h -> inf at %.4g N s (C theory)" % (
     0.5 * C_theory * (1 / H0 ** 2 - 1e6), 0.5 * C_theory / H0 ** 2))
@@ -189,7 +196,7 @@ tq = (0.04, 0.06, 0.08, 0.1, 0.11, 0.12, 0.13, 0.135, 0.14)
 print("%-12s " % "t" + " ".join("%7.3f" % x for x in tq))
 for name, (tt, FF) in (("body-fitted", (bt, bF)), ("IB", (it, iF))):
     print("%-12s " % name + " ".join("%7.3f" % (1e3 * h_of_t(tt, FF, C_theory, x)) for x in tq))
-ma = m + 1000 * A ** 3  # with an added mass of rho V (coefficient 1)
+ma = m + RHO * A ** 3  # with an added mass of rho V (coefficient 1)
 for name, (tt, FF) in (("body-fitted", (bt, bF)), ("IB", (it, iF))):
     ti, hi = parting_inertia(tt, FF, C_theory, ma)
     print("with mass + added mass rho V (%.4g kg), %s: h = 1 mm at %s" % (ma, name, "%.4f s" % ti if ti else "never (h end %.3g)" % hi))
