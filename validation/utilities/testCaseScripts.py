@@ -13,7 +13,10 @@ import sys
 import tempfile
 
 here = os.path.dirname(os.path.abspath(__file__))
-project = os.path.join(here, "..", "..")
+project = os.path.abspath(os.path.join(here, "..", ".."))
+# The scripts run as in a user's shell that sourced src/etc/bashrc, which
+# sets IMMERSEDDEM_DIR (they find the project's Python modules from it)
+runEnv = dict(os.environ, IMMERSEDDEM_DIR=project)
 pyDir = os.path.join(project, "src", "python")
 sys.path.insert(0, pyDir)
 from immersedDEMCase import caseConstants, readDictionary, dictionaryError  # noqa: E402
@@ -74,7 +77,7 @@ edit("constant/immersedDEMProperties", r"(cube\s*\{[^}]*?density\s+)2500", r"\g<
 os.makedirs(os.path.join(case, "constant", "triSurface"), exist_ok=True)
 prism = os.path.join(pyDir, "immersedDEMPrism")
 for stl, a in (("cube.stl", ["14.1421356", "10", "4"]), ("disc.stl", ["10", "5", "24"])):
-    subprocess.run([sys.executable, prism, os.path.join(case, "constant", "triSurface", stl)] + a,
+    subprocess.run(env=runEnv, args=[sys.executable, prism, os.path.join(case, "constant", "triSurface", stl)] + a,
                    check=True, capture_output=True)
 shutil.copy(os.path.join(project, "caseTemplates", "quickStart", "constant", "triSurface", "block.stl"),
             os.path.join(case, "constant", "triSurface"))
@@ -89,7 +92,7 @@ with open(os.path.join(out, "bodies.dat"), "w") as f:
         v = 0.05 if i < 4 else 0.0
         f.write("%g cubes_0 0 0 %g 0 0 %g\n" % (t, 0.085 if i == 2 else 0.04, v))
         f.write("%g discs_0 0.01 0 0.03 0 0 %g\n" % (t, v))
-r = subprocess.run([sys.executable, os.path.join(case, "plotPile"), "-case", case, "-noplot"],
+r = subprocess.run(env=runEnv, args=[sys.executable, os.path.join(case, "plotPile"), "-case", case, "-noplot"],
                    capture_output=True, text=True)
 print(r.stdout + r.stderr)
 check("plotPile prints the case's constants",
@@ -113,7 +116,7 @@ ref = os.path.join(work, "pileRef")
 shutil.copytree(pile, ref)
 shutil.copytree(os.path.join(case, "constant", "triSurface"), os.path.join(ref, "constant", "triSurface"))
 shutil.copytree(os.path.join(case, "postProcessing"), os.path.join(ref, "postProcessing"))
-r0 = subprocess.run([sys.executable, os.path.join(ref, "plotPile"), "-case", ref, "-noplot"],
+r0 = subprocess.run(env=runEnv, args=[sys.executable, os.path.join(ref, "plotPile"), "-case", ref, "-noplot"],
                     capture_output=True, text=True)
 u, u0 = terminalOf(r.stdout, "cubes_0"), terminalOf(r0.stdout, "cubes_0")
 ud, ud0 = terminalOf(r.stdout, "discs_0"), terminalOf(r0.stdout, "discs_0")
