@@ -207,21 +207,8 @@ void Foam::immersedFluidCoupling::fluidLoads
         // contact rule; a free body the implicit coupling, unless the
         // fluid solver's significant answer exceeds its stable range
         // (M > m + 2 m_hat: fluidImpedance.H)
-        // A body in contact at the step's end that bounced off its first
-        // contact (none at the last loads nor in the recent steps but this
-        // one, and its velocity reversed: moving back at more than a tenth
-        // of its speed before) is rebounding, not landing: its impact
-        // crossed the end of the step. It takes the implicit rule, as a
-        // bounce completed within the step, which cancels the fluid's
-        // answer to the bounce by the added mass its contact moved with
-        // (under the contact rule that answer would take the rebound back)
-        const bool rebounding =
-            inContact[i] && !mem.wasInContact
-         && couplingMemory::isolatedImpact(mem.recentContacts)
-         && b.velocity.dot(mem.previousVelocity)
-          < -0.1*mem.previousVelocity.squaredNorm();
         const scalar cap = 100;
-        bool held = mem.inBed(inContact[i] && !rebounding);
+        bool held = mem.inBed(inContact[i]);
         if
         (
             !held
@@ -272,11 +259,11 @@ void Foam::immersedFluidCoupling::fluidLoads
                 F, T, z, dem.time(), b.velocity, a, b.angularVelocity, alpha
             );
         }
-        // Free of contacts at the step's start, or rebounding: an impact
-        // within the step restarts the dampers' course (the contact moves
-        // the body with its own added mass, far faster than the fluid; the
-        // damper would take its rebound back towards the course before it)
-        b.fluid.impactRestartsCourse = inContact[i] && !rebounding ? 0 : 1;
+        // Free of contacts at the step's start: an impact within the step
+        // restarts the dampers' course (the contact moves the body with
+        // its own added mass, far faster than the fluid; the damper would
+        // take its rebound back towards the course before it)
+        b.fluid.impactRestartsCourse = inContact[i] ? 0 : 1;
         if (debug)
         {
             Info<< "IFC " << word(b.name) << " t " << U.time().value()
@@ -287,8 +274,7 @@ void Foam::immersedFluidCoupling::fluidLoads
                 << " m " << b.mass() << " mhat " << z.addedMass
                 << " c " << z.damping << " phi " << size.solidFraction
                 << " con " << inContact[i] << mem.wasInContact
-                << " held " << held << " rebounding " << rebounding
-                << " M " << mem.addedMass.value() << endl;
+                << " held " << held << " M " << mem.addedMass.value() << endl;
         }
         mem.remember(b.velocity, b.angularVelocity, c(M[i]), c(L[i]), inContact[i]);
     }
