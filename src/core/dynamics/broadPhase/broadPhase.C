@@ -68,10 +68,65 @@ broadPhase::pairList broadPhase::gridPairs
 }
 
 
+broadPhase::pairList broadPhase::gridPairs
+(
+    const std::vector<axisAlignedBox>& box, const std::vector<int>& others,
+    const periodicBox& periodic
+)
+{
+    if (!periodic.active())
+    {
+        return gridPairs(box, others);
+    }
+    // Each box moved by whole periods so that its centre is in the primary
+    // cell, and its images that meet the cell: two boxes that meet through
+    // some images meet, moved together, at a point of the primary cell, so
+    // their images there are both listed
+    std::vector<axisAlignedBox> images;
+    std::vector<int> of;
+    for (const int i : others)
+    {
+        vec3 c = 0.5*(box[i].min + box[i].max);
+        const vec3 c0 = c;
+        periodic.wrap(c);
+        const vec3 w = c - c0;
+        const axisAlignedBox moved(box[i].min + w, box[i].max + w);
+        for (const vec3& s : periodic.imageShifts(moved))
+        {
+            images.emplace_back(moved.min + s, moved.max + s);
+            of.push_back(i);
+        }
+    }
+    std::vector<int> all(images.size());
+    for (size_t k = 0; k < all.size(); ++k) all[k] = int(k);
+    pairList pairs;
+    for (const auto& p : gridPairs(images, all))
+    {
+        const int i = of[p.first], j = of[p.second];
+        if (i != j) pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
+
+bool broadPhase::imagesOverlap
+(
+    const axisAlignedBox& a, const axisAlignedBox& b, const periodicBox& periodic
+)
+{
+    if (!periodic.active()) return a.overlaps(b);
+    const vec3 s =
+        periodic.nearestShift(0.5*(a.min + a.max), 0.5*(b.min + b.max));
+    return a.overlaps(axisAlignedBox(b.min + s, b.max + s));
+}
+
+
 void broadPhase::refresh
 (
     const std::vector<axisAlignedBox>& box, const std::vector<int>& others,
-    double cell, demCounters& work
+    double cell, const periodicBox& periodic, demCounters& work
 )
 {
     // The neighbour list: pairs of bodies whose boxes, grown by a skin,
@@ -94,7 +149,7 @@ void broadPhase::refresh
         {
             listBox_[i] = box[i].inflated(skin);
         }
-        neighbours_ = gridPairs(listBox_, others);
+        neighbours_ = gridPairs(listBox_, others, periodic);
         ++builds_;
         ++work.broadPhaseBuilds;
     }
@@ -104,7 +159,7 @@ void broadPhase::refresh
 broadPhase::pairList broadPhase::candidates
 (
     const std::vector<rigidBody>& bodies, const std::vector<char>& isWall,
-    double margin, double dropBeyond,
+    const periodicBox& periodic, double margin, double dropBeyond,
     const std::function<bool(const std::pair<int, int>&)>& carried,
     demCounters& work
 )
@@ -138,7 +193,7 @@ broadPhase::pairList broadPhase::candidates
         }
     }
 
-    refresh(box, others, cell, work);
+    refresh(box, others, cell, periodic, work);
 
     std::vector<std::pair<int, int>> pairs;
     pairs.reserve(neighbours_.size() + walls.size()*others.size());
@@ -171,9 +226,12 @@ broadPhase::pairList broadPhase::candidates
     {
         const int i = p.first, j = p.second;
         if (!balls_[i].moves && !balls_[j].moves) continue;
-        if (!box[i].overlaps(box[j])) continue;
+        if (!imagesOverlap(box[i], box[j], periodic)) continue;
+        const vec3& ci = balls_[i].centre;
+        const vec3& cj = balls_[j].centre;
         const double spheres =
-            (balls_[i].centre - balls_[j].centre).norm() - balls_[i].radius - balls_[j].radius;
+            (cj + periodic.nearestShift(ci, cj) - ci).norm()
+          - balls_[i].radius - balls_[j].radius;
         if (spheres > dropBeyond && !carried(p))
         {
             ++work.droppedBySpheres;

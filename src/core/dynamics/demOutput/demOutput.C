@@ -75,7 +75,7 @@ const std::vector<std::string>& demOutput::bodyColumns()
         "time", "body", "x", "y", "z", "qw", "qx", "qy", "qz",
         "vx", "vy", "vz", "wx", "wy", "wz",
         "Fx", "Fy", "Fz", "Fcx", "Fcy", "Fcz", "Ffx", "Ffy", "Ffz",
-        "Tx", "Ty", "Tz", "Flx", "Fly", "Flz"
+        "Tx", "Ty", "Tz", "Flx", "Fly", "Flz", "xu", "yu", "zu"
     };
     return c;
 }
@@ -124,6 +124,7 @@ void demOutput::writeBodies(double time, const demSolver& dem)
         v3(b.appliedFluidForce(dem.time()));
         v3(T);
         v3(b.lubricationForce);
+        v3(x + b.periodicOffset);
         bodies_ << '\n';
     }
     bodies_.flush();

@@ -15,6 +15,55 @@
 namespace immersedDEM
 {
 
+namespace
+{
+
+//- For one pair's evaluation in a periodic domain: A (unless a wall) at
+//  its unwrapped position, so that the pair's contact points and
+//  histories continue when A is wrapped, and B at its image nearest to A
+//  (periodicBox::nearestShift); both poses back as they were after
+class pairImage
+{
+    std::vector<rigidBody>& bodies_;
+    int a_ = -1, b_ = -1;
+    bodyPose poseA_, poseB_;
+
+public:
+
+    pairImage
+    (
+        const periodicBox& box, std::vector<rigidBody>& bodies,
+        const std::vector<char>& isWall, const std::pair<int, int>& p
+    )
+    :
+        bodies_(bodies)
+    {
+        if (!box.active() || isWall[p.first] || isWall[p.second]) return;
+        rigidBody& A = bodies[p.first];
+        rigidBody& B = bodies[p.second];
+        a_ = p.first;
+        b_ = p.second;
+        poseA_ = A.pose;
+        poseB_ = B.pose;
+        const vec3 xA = A.pose.position() + A.periodicOffset;
+        A.pose.setPosition(xA);
+        B.pose.setPosition(B.pose.position() + box.nearestShift(xA, B.pose.position()));
+    }
+
+    ~pairImage()
+    {
+        if (a_ < 0) return;
+        bodies_[a_].pose = poseA_;
+        bodies_[b_].pose = poseB_;
+    }
+
+    pairImage(const pairImage&) = delete;
+    pairImage& operator=(const pairImage&) = delete;
+};
+
+} // End anonymous namespace
+
+
 demSolver::demSolver(std::vector<contactMaterial> materials, const demSettings& settings)
 :
     materials_(std::move(materials)),
@@ -63,6 +112,14 @@ int demSolver::addBody(rigidBody b, bool wall)
         (
             "Body '" + b.name + "': contact law " + law_->type()
           + " needs spheres; use the volume law for other shapes"
+        );
+    }
+    if (!wall)
+    {
+        settings_.periodic.check
+        (
+            b.name, 2*b.geometry->boundingRadius(),
+            std::max(engineReach(), lubricationReach())
         );
     }
     bodies_.push_back(std::move(b));
@@ -141,7 +198,7 @@ std::vector<std::pair<int, int>> demSolver::candidatePairs()
         : std::numeric_limits<double>::infinity();
     return broad_.candidates
     (
-        bodies_, isWall_, margin, dropBeyond,
+        bodies_, isWall_, settings_.periodic, margin, dropBeyond,
         [this](const std::pair<int, int>& p) { return reuse_.carries(p); },
         counters_
     );
@@ -306,6 +363,9 @@ void demSolver::computeContacts()
                 continue;
             }
             contacts_.beginPair(p.first, p.second);
+            // (periodic: A at its unwrapped position, B at its image
+            // nearest A, for this pair only)
+            const pairImage image(settings_.periodic, bodies_, isWall_, p);
             if (bodies_[p.first].dynamic() || bodies_[p.second].dynamic())
             {
                 contactOf(c, p, g, full);
@@ -342,6 +402,39 @@ void demSolver::computeContacts()
     loadsCurrent_ = true;
     counters_.contactSeconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+
+void demSolver::wrapPeriodic()
+{
+    if (!settings_.periodic.active()) return;
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        rigidBody& b = bodies_[i];
+        if (isWall_[i] || !b.dynamic()) continue;
+        vec3 x = b.pose.position();
+        const periodicBox::periods n = settings_.periodic.wrap(x);
+        if (n[0] != 0 || n[1] != 0 || n[2] != 0)
+        {
+            b.pose.setPosition(x);
+            b.periodicOffset += settings_.periodic.translation(n);
+        }
+    }
+}
+
+
+void demSolver::setPeriodic(const periodicBox& box)
+{
+    settings_.periodic = box;
+    const double reach = std::max(engineReach(), lubricationReach());
+    for (size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (isWall_[i]) continue;
+        box.check(bodies_[i].name, 2*bodies_[i].geometry->boundingRadius(), reach);
+    }
+    wrapPeriodic();
+    broad_.clear();
+    bodiesChanged();
 }
 
 
@@ -389,6 +482,7 @@ void demSolver::step(double dt)
         rigidBodyIntegrator::kick(b, 0.5*dt);
         rigidBodyIntegrator::drift(b, dt);
     }
+    wrapPeriodic();
     // Velocity-dependent loads see the half-step velocity: evaluate them
     // at the half step
     loadTime_ = time_ + 0.5*dt;

@@ -171,12 +171,15 @@ demStepSize::choice demStepSize::stepFor
             .inflated(travel[i] + 0.5*reach);
         if (!in.isWall[i]) others.push_back(i);
     }
-    for (const auto& p : broadPhase::gridPairs(grown, others))
+    const periodicBox& periodic = in.settings.periodic;
+    for (const auto& p : broadPhase::gridPairs(grown, others, periodic))
     {
         const int i = p.first, j = p.second;
         if (!in.bodies[i].dynamic() && !in.bodies[j].dynamic()) continue;
+        const vec3& xi = in.bodies[i].pose.position();
+        const vec3& xj = in.bodies[j].pose.position();
         const double gap =
-            (in.bodies[i].pose.position() - in.bodies[j].pose.position()).norm()
+            (xj + periodic.nearestShift(xi, xj) - xi).norm()
           - in.bodies[i].geometry->boundingRadius() - in.bodies[j].geometry->boundingRadius();
         if (gap <= travel[i] + travel[j] + reach) consider(i, j);
     }

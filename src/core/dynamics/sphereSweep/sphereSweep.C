@@ -82,7 +82,7 @@ void sphereSweep::candidates
             sphereOthers_.push_back(int(i));
         }
     }
-    broad.refresh(sphereBoxes_, sphereOthers_, cell, work);
+    broad.refresh(sphereBoxes_, sphereOthers_, cell, periodicBox(), work);
 
     // The pairs that touch (the regions' own first test, sphereOverlap),
     // in the order of candidatePairs: walls against the dynamic bodies,
