@@ -113,6 +113,8 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         secondLambda_ = 0;
         wallK_.setSize(mesh_.nCells());
         wallK_ = 0;
+        shiftOf_.clear();
+        secondShiftOf_.clear();
         largestCellSize_ = 0;
         cells_.clear();
         touched_.clear();
@@ -124,6 +126,13 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         largestCellSize();
         geometryPoses();
         toProject = bodiesToProject(dem, gp, all, velocityOnly);
+        if (dem.periodic().active())
+        {
+            // Periodic: every body every step (its images come and go)
+            all = true;
+            toProject.clear();
+            velocityOnly.clear();
+        }
         if (velocityOnly.size())
         {
             std::vector<bool> only(bodies.size(), false);
@@ -171,6 +180,11 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
             secondOf_[celli] = -1;
             secondLambda_[celli] = 0;
             wallK_[celli] = 0;
+            if (shiftOf_.size())
+            {
+                shiftOf_[celli] = Zero;
+                secondShiftOf_[celli] = Zero;
+            }
         }
         touched_.setSize(kept);
     }
@@ -203,23 +217,70 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
     (
         vector::uniform(forcing_.sharp ? largestCellSize_ : scalar(0))
     );
-    std::vector<labelList> candidates(toProject.size());
-    std::vector<std::vector<narrowBand::value>> band(toProject.size());
-    projectedVolume_.setSize(bodies.size());
-    projectedVolume_ = Zero;
-    const scalarField& reach = cells_.reach();
+    // Each body's images that meet the mesh: itself, and in a periodic
+    // domain its copies a period away where it is cut by a periodic
+    // boundary (periodicBox::imageShifts). An image is projected as the
+    // body at its pose moved by the shift; its cells keep the shift
+    // (bodyShift), so that the body's velocity there and its fluid
+    // moments are those of the image. Band slots: the body's own index for
+    // itself, others past the bodies (queried afresh: no earlier pose)
+    const periodicBox& periodic = dem.periodic();
+    struct image
+    {
+        label k;
+        vec3 shift;
+        label slot;
+    };
+    std::vector<image> images;
     forAll(toProject, k)
     {
         const label bi = toProject[k];
+        if (!periodic.active())
+        {
+            images.push_back({k, vec3::Zero(), bi});
+            continue;
+        }
+        const axisAlignedBox wb = bodies[bi].geometry->worldBox(gp[bi]);
+        const vec3 g = c(grow);
+        const auto shifts = periodic.imageShifts(axisAlignedBox(wb.min - g, wb.max + g));
+        forAll(shifts, m)
+        {
+            const bool self = shifts[m].isZero();
+            images.push_back
+            (
+                {k, shifts[m], self ? bi : label((m + 1)*bodies.size() + bi)}
+            );
+        }
+    }
+    if (periodic.active() && shiftOf_.size() != mesh_.nCells())
+    {
+        shiftOf_.setSize(mesh_.nCells(), Zero);
+        secondShiftOf_.setSize(mesh_.nCells(), Zero);
+    }
+    const bool shifted = periodic.active();
+
+    std::vector<labelList> candidates(images.size());
+    std::vector<std::vector<narrowBand::value>> band(images.size());
+    std::vector<bodyPose> imagePose(images.size());
+    projectedVolume_.setSize(bodies.size());
+    projectedVolume_ = Zero;
+    const scalarField& reach = cells_.reach();
+    for (size_t ii = 0; ii < images.size(); ++ii)
+    {
+        const label bi = toProject[images[ii].k];
+        const vec3& s = images[ii].shift;
+        const label slot = images[ii].slot;
         const rigidBody& b = bodies[bi];
-        const bodyPose& pose = gp[bi];
+        bodyPose& pose = imagePose[ii];
+        pose = gp[bi];
+        if (slot != bi) pose.setPosition(pose.position() + s);
         const axisAlignedBox wb = b.geometry->worldBox(pose);
-        candidates[k] = cells_.candidatesOf
+        candidates[ii] = cells_.candidatesOf
         (
-            b, bi, treeBoundBox(v(wb.min) - grow, v(wb.max) + grow),
-            0.5*largestCellSize_, debug
+            b, slot, treeBoundBox(v(wb.min) - grow, v(wb.max) + grow),
+            0.5*largestCellSize_, debug || slot != bi
         );
-        const labelList& cand = candidates[k];
+        const labelList& cand = candidates[ii];
 
         // Convex bodies by their planes, the others (bodies of convex
         // pieces too) by the narrow band
@@ -227,18 +288,18 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         if (convexCells::handles(*b.geometry, false))
         {
             planes.reset(new convexCells(*b.geometry, pose));
-            band[k].resize(cand.size());
+            band[ii].resize(cand.size());
             forAll(cand, i)
             {
-                band[k][i] = planes->classify(c(C[cand[i]]), reach[cand[i]]);
+                band[ii][i] = planes->classify(c(C[cand[i]]), reach[cand[i]]);
             }
         }
         else
         {
-            band[k] = cells_.bandOf
+            band[ii] = cells_.bandOf
             (
-                b, bi, cand, pose,
-                !debug && hasProjectedPose(bi) ? &projectedPose_[bi] : nullptr
+                b, slot, cand, pose,
+                !debug && slot == bi && hasProjectedPose(bi) ? &projectedPose_[bi] : nullptr
             );
         }
 
@@ -247,7 +308,7 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
         {
             const label celli = cand[i];
             if (!cellBoxes[celli].overlaps(bb)) continue;
-            const narrowBand::value& d = band[k][i];
+            const narrowBand::value& d = band[ii][i];
             scalar f = d.phi < 0 ? 1 : 0;
             if (d.exact)
             {
@@ -270,23 +331,31 @@ Foam::label Foam::immersedBoundaryProjection::project(const demSolver& dem)
                     // The body that had the cell keeps its share of it
                     secondOf_[celli] = bodyOf_[celli];
                     secondLambda_[celli] = lambda[celli];
+                    if (shifted) secondShiftOf_[celli] = shiftOf_[celli];
                 }
                 lambda[celli] = f;
                 bodyOf_[celli] = label(bi);
-                Uib[celli] = v(b.pointVelocity(c(C[celli])));
+                if (shifted) shiftOf_[celli] = v(s);
+                Uib[celli] = v(b.pointVelocity(c(C[celli]) - s));
             }
             else if (f > secondLambda_[celli])
             {
                 secondOf_[celli] = label(bi);
                 secondLambda_[celli] = f;
+                if (shifted) secondShiftOf_[celli] = v(s);
             }
         }
     }
     if (forcing_.sharp)
     {
-        forAll(toProject, k)
+        for (size_t ii = 0; ii < images.size(); ++ii)
         {
-            projectSharp(bodies[toProject[k]], toProject[k], gp[toProject[k]], candidates[k], band[k]);
+            const label bi = toProject[images[ii].k];
+            projectSharp
+            (
+                bodies[bi], bi, imagePose[ii], images[ii].shift,
+                candidates[ii], band[ii]
+            );
         }
     }
     label nCells = 0;

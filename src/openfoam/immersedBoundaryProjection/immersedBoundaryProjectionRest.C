@@ -180,7 +180,7 @@ void Foam::immersedBoundaryProjection::setVelocities
         const label bi = bodyOf_[celli];
         if (bi >= 0 && velocityOnly[bi])
         {
-            Uib[celli] = v(dem.bodies()[bi].pointVelocity(c(C[celli])));
+            Uib[celli] = v(dem.bodies()[bi].pointVelocity(c(C[celli] - bodyShift(celli))));
         }
     }
     for (size_t bi = 0; bi < velocityOnly.size(); ++bi)

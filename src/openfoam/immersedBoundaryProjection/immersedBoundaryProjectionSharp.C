@@ -40,6 +40,7 @@ void Foam::immersedBoundaryProjection::projectSharp
     const rigidBody& b,
     const label bi,
     const bodyPose& pose,
+    const vec3& shift,
     const labelList& candidates,
     const std::vector<::immersedDEM::narrowBand::value>& band
 )
@@ -149,7 +150,8 @@ void Foam::immersedBoundaryProjection::projectSharp
             {
                 touched_.append(celli);
                 bodyOf_[celli] = bi;
-                Uib[celli] = v(b.pointVelocity(c(C[celli])));
+                if (shiftOf_.size()) shiftOf_[celli] = v(shift);
+                Uib[celli] = v(b.pointVelocity(c(C[celli]) - shift));
             }
             wallK_[celli] = K;
         }

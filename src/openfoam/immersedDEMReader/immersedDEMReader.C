@@ -2,6 +2,7 @@
 #include "immersedDEMDictionaryReaders.H"
 #include "immersedDEMPatchSurface.H"
 #include "immersedDEMSlabs.H"
+#include "immersedDEMPeriodic.H"
 #include "dictionaryChecks.H"
 #include "immersedDEMInsertion.H"
 #include "timeStepExplanation.H"
@@ -127,6 +128,26 @@ std::unique_ptr<immersedDEM::demSolver> Foam::immersedDEMReader::read
                 readWall(e.keyword(), d, surfaceDir, materials, std::max(largest, SMALL), mesh),
                 true
             );
+        }
+    }
+
+    // Periodic directions (cyclic patches), before the insertion: the
+    // bodies' sizes are checked against the periods
+    if (mesh)
+    {
+        const periodicBox periodic = immersedDEMPeriodic::fromMesh(*mesh, dict);
+        if (periodic.active())
+        {
+            try
+            {
+                dem->setPeriodic(periodic);
+            }
+            catch (const coreError& err)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "In " << dict.name() << ": " << err.what() << nl
+                    << exit(FatalIOError);
+            }
         }
     }
 

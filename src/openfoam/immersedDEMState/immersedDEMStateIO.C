@@ -49,6 +49,12 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
             const quat& q = b.pose.orientation();
             os.beginBlock(word(b.name));
             os.writeEntry("position", v(b.pose.position()));
+            if (dem_->periodic().active())
+            {
+                // The periods it was moved back by (bodies.dat's unwrapped
+                // position continues)
+                os.writeEntry("periodicOffset", v(b.periodicOffset));
+            }
             os.writeEntry("orientation", List<scalar>({q.w(), q.x(), q.y(), q.z()}));
             os.writeEntry("velocity", v(b.velocity));
             os.writeEntry("angularVelocity", v(b.angularVelocity));
@@ -217,6 +223,7 @@ bool Foam::immersedDEMState::readRestart()
         b.pose = bodyPose(c(d.get<vector>("position")), quat(q[0], q[1], q[2], q[3]));
         b.velocity = c(d.get<vector>("velocity"));
         b.angularVelocity = c(d.get<vector>("angularVelocity"));
+        b.periodicOffset = c(d.getOrDefault<vector>("periodicOffset", Zero));
         // The pose its cells were projected at (states written before it
         // have none: the body is projected where it is)
         if (d.found("projectedPosition"))

@@ -71,7 +71,8 @@ public:
         {
             const label i = forced[celli];
             if (i < 0) continue;
-            const point& xb = v(dem.bodies()[i].pose.position());
+            const point xb =
+                v(dem.bodies()[i].pose.position()) + projection.bodyShift(celli);
             for (const label facei : cells[celli])
             {
                 scalar pn = 0, a = 0;
@@ -164,7 +165,8 @@ Foam::bodyFluidSums::bodyFluidSums
         const label i = bodyOf[celli];
         if (i < 0) continue;
         const scalar w = lambda[celli]*V[celli];
-        const vector r = C[celli] - v(dem.bodies()[i].pose.position());
+        const vector r =
+            C[celli] - projection.bodyShift(celli) - v(dem.bodies()[i].pose.position());
         const vector d =
             projection.cellCoefficient(celli, deltaT)*V[celli]*(U[celli] - Uib[celli]);
         const vector m = w*U[celli];
@@ -179,7 +181,9 @@ Foam::bodyFluidSums::bodyFluidSums
         if (j >= 0)
         {
             const vector mj = secondLambda[celli]*V[celli]*U[celli];
-            const vector rj = C[celli] - v(dem.bodies()[j].pose.position());
+            const vector rj =
+                C[celli] - projection.secondShift(celli)
+              - v(dem.bodies()[j].pose.position());
             momentum[j] += mj;
             angularMomentum[j] += rj ^ mj;
         }
@@ -271,6 +275,8 @@ void Foam::bodyFluidSums::removeSealedFacePressure
     {
         const label i = forced[celli];
         if (i < 0) continue;
+        // (faces seen from the image of the body that set the cell)
+        const vector sh = projection.bodyShift(celli);
         for (const label facei : cells[celli])
         {
             if (facei < nInternal)
@@ -280,7 +286,7 @@ void Foam::bodyFluidSums::removeSealedFacePressure
                 if (forced[n] < 0 || forced[n] == i) continue;
                 const scalar pf =
                     w[facei]*p[own[facei]] + (1 - w[facei])*p[nei[facei]];
-                remove(i, isOwner ? Sf[facei] : -Sf[facei], pf, Cf[facei]);
+                remove(i, isOwner ? Sf[facei] : -Sf[facei], pf, Cf[facei] - sh);
                 continue;
             }
             const label patchi = patches.whichPatch(facei);
@@ -294,11 +300,11 @@ void Foam::bodyFluidSums::removeSealedFacePressure
                 if (n < 0 || n == i) continue;
                 const scalar wf = mesh.weights().boundaryField()[patchi][pfi];
                 const scalar pf = wf*p[celli] + (1 - wf)*pNbr[patchi][pfi];
-                remove(i, S, pf, x);
+                remove(i, S, pf, x - sh);
             }
             else if (wallFaces && U.boundaryField()[patchi].fixesValue())
             {
-                remove(i, S, pb[pfi], x);
+                remove(i, S, pb[pfi], x - sh);
             }
         }
     }

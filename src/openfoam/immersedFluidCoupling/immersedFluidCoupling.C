@@ -124,7 +124,8 @@ void Foam::immersedFluidCoupling::fluidLoads
         for (label j = 0; j < n; ++j)
         {
             if (j == i || dem.isWall(j)) continue;
-            const double d = (bodies[j].pose.position() - xi).norm();
+            const vec3& xj = bodies[j].pose.position();
+            const double d = (xj + dem.periodic().nearestShift(xi, xj) - xi).norm();
             if (d < 2*equivalentRadius[i] + equivalentRadius[j])
             {
                 near.emplace_back(d, equivalentRadius[j]);

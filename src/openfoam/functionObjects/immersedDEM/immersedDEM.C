@@ -82,6 +82,13 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
     }
 
     const List<scalar>& projectedVolume = projection.projectedVolume();
+    if (debug)
+    {
+        // (DebugSwitches { immersedDEM 1; }: each body's projected volume
+        // every step, e.g. across periodic boundaries)
+        Info<< "immersedDEM: time " << time_.timeName() << ';';
+        projection.reportProjectedVolumes(state_.dem());
+    }
     for (label i = 0; i < n; ++i)
     {
         const ::immersedDEM::rigidBody& b = bodies[i];
