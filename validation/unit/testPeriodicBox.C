@@ -11,12 +11,15 @@
 #include "triangleMeshShape.H"
 #include "primitiveMeshes.H"
 #include "coreError.H"
+#include "bodyInsertion.H"
+#include "sphereShape.H"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <memory>
 #include <set>
 
 using namespace immersedDEM;
@@ -268,4 +271,53 @@ TEST(periodicBox, bodyTooLargeForThePeriodIsAnError)
     dem.setPeriodic(cube(0.02, 1));
     auto geometry = std::make_shared<triangleMeshShape>(primitiveMeshes::box(vec3(0.004, 0.004, 0.004)), "cube");
     EXPECT_THROW(dem.addBody(rigidBody("large", geometry, 2000)), coreError);
+}
+
+
+// Insertion in a periodic domain: a region reaching past the periodic
+// boundaries (bodies may straddle them) filled with spheres, every pair
+// apart by the clearance through the nearest image too; the same filling
+// without the periodicity has pairs that overlap through the boundary
+TEST(periodicBox, insertionKeepsBodiesApartThroughTheBoundary)
+{
+    const double L = 0.1, R = 0.004, clearance = 1e-4;
+    auto fill = [&](bool periodic)
+    {
+        contactMaterial m{"glass", 6e10, 0.25, 0.9, 0.3};
+        auto dem = std::make_unique<demSolver>(std::vector<contactMaterial>{m}, demSettings());
+        if (periodic) dem->setPeriodic(cube(L, 2));
+        bodyTemplate t;
+        t.name = "ball";
+        t.geometry = std::make_shared<sphereShape>(R);
+        t.density = 2500;
+        insertionSettings s;
+        s.name = "balls";
+        s.region = insertionRegion::box(vec3(-0.01, -0.01, 0), vec3(L + 0.01, L + 0.01, L));
+        s.number = 400;
+        s.seed = 3;
+        s.clearance = clearance;
+        const insertionReport r = bodyInsertion::insert(*dem, t, s);
+        EXPECT_EQ(r.placed, 400) << r.summary();
+        return dem;
+    };
+    auto closest = [&](const demSolver& dem, const periodicBox& p)
+    {
+        double dMin = 1;
+        const auto& b = dem.bodies();
+        for (size_t i = 0; i < b.size(); ++i)
+        {
+            for (size_t j = 0; j < i; ++j)
+            {
+                const vec3& xi = b[i].pose.position();
+                const vec3& xj = b[j].pose.position();
+                dMin = std::min(dMin, (xj + p.nearestShift(xi, xj) - xi).norm());
+            }
+        }
+        return dMin;
+    };
+    const periodicBox p = cube(L, 2);
+    const auto withImages = fill(true);
+    const auto without = fill(false);
+    EXPECT_GE(closest(*withImages, p), 2*R + clearance - 1e-15);
+    EXPECT_LT(closest(*without, p), 2*R);
 }

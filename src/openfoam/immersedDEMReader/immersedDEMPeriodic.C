@@ -82,6 +82,7 @@ using namespace Foam;
             L = (hi - lo)*n;
             // (either sign is the same period; the positive one reads best)
             if (cmptSum(L) < 0) L = -L;
+            L += vector::zero;  // (no -0 in the log)
         }
         try
         {

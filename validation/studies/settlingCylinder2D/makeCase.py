@@ -13,7 +13,8 @@ Re = U_t D/nu of about 10 (at the default density). A body lighter than the
 liquid rises instead; its terminal speed comes from the buoyant weight
 |rho_s - rho_f| g pi D^2/4 per depth in the same way.
 
-immersed: the lab frame. A closed channel of width 8 D and height -height D,
+immersed: the lab frame. A closed channel of width 8 D and height -height D
+    (-periodic: periodic along its length, a period of -height D),
     uniform cells D/n, one cell (1 mm) thick with empty front and back; the
     cylinder a free body (an STL prism longer than the slab) released at rest
     on the axis -start D below the top (or -startFromBottom D above the
@@ -170,6 +171,14 @@ def immersed(a):
     h = D/a.n
     nx = int(round(2*HALF_WIDTH*a.n))
     ny = int(round(a.height*a.n))
+    # -periodic: bottom and top a cyclic pair (the channel periodic along
+    # its length; the fvOption's balanceWeight holds the mean flux at zero)
+    if a.periodic:
+        boundaries = """    walls { type wall; faces ( (0 4 7 3) (1 2 6 5) ); }
+    bottom { type cyclic; neighbourPatch top; faces ( (0 1 5 4) ); }
+    top { type cyclic; neighbourPatch bottom; faces ( (3 7 6 2) ); }"""
+    else:
+        boundaries = "    walls { type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2) ); }"
     write(os.path.join(d, "system/blockMeshDict"), "dictionary", "blockMeshDict", """
 scale   %g;
 vertices
@@ -183,30 +192,31 @@ blocks
 );
 boundary
 (
-    walls { type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2) ); }
+%s
     frontAndBack { type empty; faces ( (0 3 2 1) (4 5 6 7) ); }
 );
 """ % (D, -HALF_WIDTH, HALF_WIDTH, HALF_WIDTH, a.height, -HALF_WIDTH, a.height,
        -HALF_WIDTH, a.slab/D, HALF_WIDTH, a.slab/D, HALF_WIDTH, a.height, a.slab/D,
-       -HALF_WIDTH, a.height, a.slab/D, nx, ny))
+       -HALF_WIDTH, a.height, a.slab/D, nx, ny, boundaries))
+    cyclic = "    \"(bottom|top)\" { type cyclic; }\n" if a.periodic else ""
     write(os.path.join(d, "0/U"), "volVectorField", "U", """
 dimensions      [0 1 -1 0 0 0 0];
 internalField   uniform (0 0 0);
 boundaryField
 {
     walls { type noSlip; }
-    frontAndBack { type empty; }
+%s    frontAndBack { type empty; }
 }
-""")
+""" % cyclic)
     write(os.path.join(d, "0/p"), "volScalarField", "p", """
 dimensions      [0 2 -2 0 0 0 0];
 internalField   uniform 0;
 boundaryField
 {
     walls { type zeroGradient; }
-    frontAndBack { type empty; }
+%s    frontAndBack { type empty; }
 }
-""")
+""" % cyclic)
     transport(d, a.nu)
     write(os.path.join(d, "constant/g"), "uniformDimensionedVectorField", "g", """
 dimensions      [0 1 -2 0 0 0 0];
@@ -250,6 +260,8 @@ def main():
     p.add_argument("-start", type=float, default=6, help="immersed: start below the top [D]")
     p.add_argument("-startFromBottom", type=float, default=None,
                    help="immersed: start this far above the bottom [D] instead (for a rising body)")
+    p.add_argument("-periodic", action="store_true",
+                   help="immersed: the channel periodic along its length (bottom and top a cyclic pair)")
     p.add_argument("-endTime", type=float, default=3.0)
     p.add_argument("-maxCo", type=float, default=0.5)
     # bodyFitted

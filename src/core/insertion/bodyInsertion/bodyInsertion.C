@@ -118,7 +118,33 @@ const triangleSoup& insertionNeighbourhood::surfaceOf(const shape& s)
 }
 
 
-void insertionNeighbourhood::add(posedBody b)
+void insertionNeighbourhood::add(posedBody b, const bool wall)
+{
+    const bool finite =
+        b.type == posedBody::kind::sphere || b.type == posedBody::kind::mesh;
+    if (periodic_.active() && finite && !wall)
+    {
+        for (const vec3& s : periodic_.imageShifts(b.box.inflated(cell_)))
+        {
+            if (s.isZero()) continue;
+            // The same body a period away: every world datum moved by s
+            posedBody image = b;
+            image.pose.setPosition(image.pose.position() + s);
+            image.box = axisAlignedBox(image.box.min + s, image.box.max + s);
+            for (vec3& v : image.vertices) v += s;
+            for (auto& t : image.triangles) for (vec3& v : t) v += s;
+            for (axisAlignedBox& tb : image.triangleBoxes)
+            {
+                tb = axisAlignedBox(tb.min + s, tb.max + s);
+            }
+            addOne(std::move(image));
+        }
+    }
+    addOne(std::move(b));
+}
+
+
+void insertionNeighbourhood::addOne(posedBody b)
 {
     const int i = int(bodies_.size());
     const bool finite =
@@ -253,9 +279,15 @@ insertionReport bodyInsertion::insert
     // in the 27 cells around its centre's
     const double largest = 2*t.maxBoundingRadius() + s.clearance;
     insertionNeighbourhood present(2*largest);
-    for (const rigidBody& b : dem.bodies())
+    present.setPeriodic(dem.periodic());
+    for (size_t i = 0; i < dem.bodies().size(); ++i)
     {
-        present.add(posedBody(*b.geometry, b.pose, present.surfaceOf(*b.geometry)));
+        const rigidBody& b = dem.bodies()[i];
+        present.add
+        (
+            posedBody(*b.geometry, b.pose, present.surfaceOf(*b.geometry)),
+            dem.isWall(int(i))
+        );
     }
 
     // A surface region, posed once

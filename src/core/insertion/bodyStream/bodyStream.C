@@ -133,11 +133,18 @@ streamStepReport bodyStream::insert(demSolver& dem, double t)
     // What is present now, near the region
     const double largest = 2*template_.maxBoundingRadius() + settings_.clearance;
     insertionNeighbourhood present(2*largest);
+    present.setPeriodic(dem.periodic());
     const axisAlignedBox near = settings_.region.bounds().inflated(largest);
-    for (const rigidBody& b : dem.bodies())
+    for (size_t i = 0; i < dem.bodies().size(); ++i)
     {
-        if (!b.geometry->worldBox(b.pose).overlaps(near)) continue;
-        present.add(posedBody(*b.geometry, b.pose, present.surfaceOf(*b.geometry)));
+        const rigidBody& b = dem.bodies()[i];
+        // (in a periodic domain an image of a body far away may be near)
+        if (!dem.periodic().active() && !b.geometry->worldBox(b.pose).overlaps(near)) continue;
+        present.add
+        (
+            posedBody(*b.geometry, b.pose, present.surfaceOf(*b.geometry)),
+            dem.isWall(int(i))
+        );
     }
 
     const double target = settings_.volumeFraction*settings_.region.volume();

@@ -286,6 +286,7 @@ bool Foam::functionObjects::immersedDEM::read(const dictionary& dict)
     maxBodyCourant_ = immersedDEMChecks::positiveOrDefault(dict, "maxBodyCourant", 1);
     maxFourier_ = immersedDEMChecks::inRangeOrDefault(dict, "maxFourier", 0, 1e6, 4);
     rhoInf_ = immersedDEMChecks::positive(dict, "rhoInf");
+    state_.setFluidDensity(rhoInf_);
     UName_ = dict.getOrDefault<word>("U", "U");
     readViscosity(dict);
     setViscosity();

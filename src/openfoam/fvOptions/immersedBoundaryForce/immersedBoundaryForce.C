@@ -6,6 +6,8 @@
 #include "fvmSup.H"
 #include "addToRunTimeSelectionTable.H"
 #include "clockTime.H"
+#include "periodicDrive.H"
+#include "coreConversion.H"
 
 namespace Foam
 {
@@ -40,7 +42,11 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
     }
     immersedDEMChecks::allowOnly
     (
-        dict, {"type", "active", "fields", "penalty", "name", "surface", "nu", "sealedWalls"}
+        dict,
+        {
+            "type", "active", "fields", "penalty", "name", "surface", "nu",
+            "sealedWalls", "balanceWeight"
+        }
     );
     fieldNames_ = dict.getOrDefault<wordList>("fields", wordList{"U"});
     if (fieldNames_.size() != 1)
@@ -87,6 +93,20 @@ bool Foam::fv::immersedBoundaryForce::read(const dictionary& dict)
             << exit(FatalIOError);
     }
     state_.setForcing(forcing);
+    // A periodic suspension: nothing but the fluid carries the bodies'
+    // net weight along a periodic direction (periodicDrive.H)
+    const vector g = coreConversion::toFoam(state_.settingsRead().gravity);
+    balanceWeight_ = dict.getOrDefault<bool>
+    (
+        "balanceWeight", periodicDrive::needed(state_.dem(), g)
+    );
+    if (balanceWeight_ && !state_.dem().periodic().active())
+    {
+        FatalIOErrorInFunction(dict)
+            << "Keyword 'balanceWeight' in " << dict.name() << " is on, but"
+            << " the mesh has no cyclic patches: walls carry the bodies'"
+            << " weight; remove it" << nl << exit(FatalIOError);
+    }
     return true;
 }
 
@@ -170,6 +190,34 @@ Foam::fv::immersedBoundaryForce::penaltyCoefficient() const
 }
 
 
+Foam::tmp<Foam::volVectorField::Internal>
+Foam::fv::immersedBoundaryForce::drive(const volVectorField& U)
+{
+    const periodicDrive::parts f = periodicDrive::of
+    (
+        state_.dem(), coreConversion::toFoam(state_.settingsRead().gravity),
+        state_.fluidDensity(), U, mesh_.time().deltaTValue()
+    );
+    if (driveLogged_ != mesh_.time().timeIndex())
+    {
+        driveLogged_ = mesh_.time().timeIndex();
+        Info<< "immersedBoundaryForce " << name_ << ": periodic drive "
+            << f.total() << " m/s2 (net weight " << f.weight
+            << ", walls and mean flux " << f.flux << "; mean velocity "
+            << f.meanU << " m/s)" << endl;
+    }
+    return tmp<volVectorField::Internal>
+    (
+        new volVectorField::Internal
+        (
+            IOobject("immersedBoundaryForce:drive", mesh_.time().timeName(), mesh_),
+            mesh_,
+            dimensionedVector("drive", dimVelocity/dimTime, f.total())
+        )
+    );
+}
+
+
 void Foam::fv::immersedBoundaryForce::addSup
 (
     fvMatrix<vector>& eqn,
@@ -182,6 +230,10 @@ void Foam::fv::immersedBoundaryForce::addSup
     const clockTime timer;
     const volScalarField::Internal KLambda(penaltyCoefficient());
     eqn += KLambda*state_.projection().Uib()() - fvm::Sp(KLambda, eqn.psi());
+    if (balanceWeight_)
+    {
+        eqn += drive(eqn.psi());
+    }
     state_.addForcingSeconds(timer.elapsedTime());
 }
 
@@ -199,5 +251,9 @@ void Foam::fv::immersedBoundaryForce::addSup
     const clockTime timer;
     const volScalarField::Internal rhoKLambda(rho()*penaltyCoefficient());
     eqn += rhoKLambda*state_.projection().Uib()() - fvm::Sp(rhoKLambda, eqn.psi());
+    if (balanceWeight_)
+    {
+        eqn += rho()*drive(eqn.psi())();
+    }
     state_.addForcingSeconds(timer.elapsedTime());
 }
