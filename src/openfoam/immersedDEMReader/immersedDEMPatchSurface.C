@@ -1,5 +1,6 @@
 #include "immersedDEMPatchSurface.H"
 #include "Pstream.H"
+#include "immersedDEMPeriodic.H"
 #include "wordRes.H"
 #include <algorithm>
 #include <map>
@@ -76,6 +77,40 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             << "Wall '" << name << "', keyword 'patches' in " << d.name()
             << ": the patches " << selection << " have no faces" << nl
             << exit(FatalIOError);
+    }
+    // In a periodic domain the wall continues beyond the periodic
+    // boundaries: its copies a period away along each periodic direction
+    // (and their combinations) join it, so that a body cut by the boundary
+    // meets the wall on both sides of it
+    const periodicBox periodic = immersedDEMPeriodic::fromMesh(mesh, d, false);
+    if (periodic.active())
+    {
+        std::vector<vec3> shifts{vec3::Zero()};
+        for (int k = 0; k < periodic.directions(); ++k)
+        {
+            std::vector<vec3> next;
+            for (const vec3& s : shifts)
+            {
+                for (const int m : {-1, 0, 1}) next.push_back(s + double(m)*periodic.period(k));
+            }
+            shifts.swap(next);
+        }
+        const size_t n = tris.size();
+        for (const vec3& sh : shifts)
+        {
+            if (sh.isZero()) continue;
+            for (size_t i = 0; i < n; ++i)
+            {
+                std::array<key, 3> t = tris[i];
+                for (key& c : t)
+                {
+                    for (int j = 0; j < 3; ++j) c[j] += sh[j];
+                }
+                tris.push_back(t);
+            }
+        }
+        Info<< "    wall '" << name << "': its patches' faces and their copies"
+            << " a period away (" << tris.size() << " triangles)" << endl;
     }
     std::sort(tris.begin(), tris.end());
     triangleSoup s;

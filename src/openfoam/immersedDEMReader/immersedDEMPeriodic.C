@@ -10,7 +10,8 @@ using namespace Foam;
 ::immersedDEM::periodicBox Foam::immersedDEMPeriodic::fromMesh
 (
     const polyMesh& mesh,
-    const dictionary& dict
+    const dictionary& dict,
+    const bool log
 )
 {
     ::immersedDEM::periodicBox box;
@@ -112,6 +113,10 @@ using namespace Foam;
         origin += lo*coreConversion::toCore(e);
     }
     box.setOrigin(origin);
+    if (!log)
+    {
+        return box;
+    }
 
     Info<< "    periodic for the bodies:";
     for (int k = 0; k < box.directions(); ++k)

@@ -416,8 +416,11 @@ void demSolver::wrapPeriodic()
         const periodicBox::periods n = settings_.periodic.wrap(x);
         if (n[0] != 0 || n[1] != 0 || n[2] != 0)
         {
+            const vec3 t = settings_.periodic.translation(n);
             b.pose.setPosition(x);
-            b.periodicOffset += settings_.periodic.translation(n);
+            b.periodicOffset += t;
+            // Its contacts with the walls, which stay, are where it is now
+            contacts_.translateWallHistories(int(i), -t, isWall_);
         }
     }
 }
