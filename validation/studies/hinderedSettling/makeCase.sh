@@ -27,8 +27,9 @@ cp -r "$project/caseTemplates/periodicSphereArray" "$dir"
 cd "$dir"
 ./Allclean > /dev/null 2>&1 || true
 cells=$(python3 -c "print(int(round($L*$n)))")
-foamDictionary -entry L -set "$L" system/blockMeshDict > /dev/null
-foamDictionary -entry N -set "$cells" system/blockMeshDict > /dev/null
+# (sed, not foamDictionary: rewriting the file, foamDictionary would
+# expand the vertices' $L and the blocks' $N with the old values)
+sed -i -e "s/^L .*/L       $L;/" -e "s/^N .*/N       $cells;/" system/blockMeshDict
 foamDictionary -entry drive -remove constant/fvOptions > /dev/null
 foamDictionary -entry nu -set 0.0875 constant/transportProperties > /dev/null
 foamDictionary -entry ddtSchemes.default -set backward system/fvSchemes > /dev/null
