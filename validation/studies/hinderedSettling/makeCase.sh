@@ -11,7 +11,7 @@ set -eu
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../../.." && pwd -P)"
 dir="$1"; phi="$2"; L="$3"; shift 3
-n=8; endTime=20; seed=1
+n=8; endTime=60; seed=1
 while [ $# -gt 0 ]
 do
     case "$1" in
