@@ -49,6 +49,9 @@ DICT
 if python3 -c "import sys; sys.exit(0 if float('$phi') > 0 else 1)"
 then
     number=$(python3 -c "import math; print(int(round($phi*$L**3/(math.pi/6))))")
+    # (the box grown by a radius: centres anywhere in it, none kept from
+    # a layer a radius deep at the periodic boundaries)
+    Lr=$(python3 -c "print($L + 0.5)")
     bodies="templates
 {
     ball { shape sphere; radius 0.5; material glass; density 2; }
@@ -58,7 +61,7 @@ insertion
     s
     {
         template    ball;
-        region      { type box; min (0 0 0); max ($L $L $L); }
+        region      { type box; min (-0.5 -0.5 -0.5); max ($Lr $Lr $Lr); }
         number      $number;
         seed        $seed;
     }
