@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iostream>
 #include <cmath>
 #include <random>
 #include <memory>
@@ -250,6 +251,9 @@ TEST(periodicBox, collisionThroughACornerIsTheCollisionInTheMiddle)
         dF = std::max(dF, (across.F[n] - away.F[n]).norm());
         Fmax = std::max(Fmax, away.F[n].norm());
     }
+    std::cout << "through the corner against the middle: positions " << dx
+        << " m, velocities " << dv << " m/s, angular velocities " << dw
+        << " rad/s, contact forces " << dF << " N of " << Fmax << " N" << std::endl;
     EXPECT_GT(Fmax, 0);
     EXPECT_LT(dx, 1e-10*0.008) << "positions";
     EXPECT_LT(dv, 1e-10*0.6) << "velocities";
