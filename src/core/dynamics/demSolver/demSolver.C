@@ -116,11 +116,7 @@ int demSolver::addBody(rigidBody b, bool wall)
     }
     if (!wall)
     {
-        settings_.periodic.check
-        (
-            b.name, 2*b.geometry->boundingRadius(),
-            std::max(engineReach(), lubricationReach())
-        );
+        checkPeriodicSize(b);
     }
     bodies_.push_back(std::move(b));
     isWall_.push_back(wall);
@@ -426,14 +422,22 @@ void demSolver::wrapPeriodic()
 }
 
 
+void demSolver::checkPeriodicSize(const rigidBody& b) const
+{
+    settings_.periodic.check
+    (
+        b.name, 2*b.geometry->boundingRadius(),
+        std::max(engineReach(), lubricationReach())
+    );
+}
+
+
 void demSolver::setPeriodic(const periodicBox& box)
 {
     settings_.periodic = box;
-    const double reach = std::max(engineReach(), lubricationReach());
     for (size_t i = 0; i < bodies_.size(); ++i)
     {
-        if (isWall_[i]) continue;
-        box.check(bodies_[i].name, 2*bodies_[i].geometry->boundingRadius(), reach);
+        if (!isWall_[i]) checkPeriodicSize(bodies_[i]);
     }
     wrapPeriodic();
     broad_.clear();

@@ -126,18 +126,7 @@ void insertionNeighbourhood::add(posedBody b, const bool wall)
     {
         for (const vec3& s : periodic_.imageShifts(b.box.inflated(cell_)))
         {
-            if (s.isZero()) continue;
-            // The same body a period away: every world datum moved by s
-            posedBody image = b;
-            image.pose.setPosition(image.pose.position() + s);
-            image.box = axisAlignedBox(image.box.min + s, image.box.max + s);
-            for (vec3& v : image.vertices) v += s;
-            for (auto& t : image.triangles) for (vec3& v : t) v += s;
-            for (axisAlignedBox& tb : image.triangleBoxes)
-            {
-                tb = axisAlignedBox(tb.min + s, tb.max + s);
-            }
-            addOne(std::move(image));
+            if (!s.isZero()) addOne(b.translated(s));
         }
     }
     addOne(std::move(b));

@@ -71,6 +71,18 @@ posedBody::posedBody(const shape& s, const bodyPose& p, const triangleSoup& surf
 }
 
 
+posedBody posedBody::translated(const vec3& d) const
+{
+    posedBody b = *this;
+    b.pose.setPosition(pose.position() + d);
+    b.box = axisAlignedBox(box.min + d, box.max + d);
+    for (vec3& v : b.vertices) v += d;
+    for (auto& t : b.triangles) for (vec3& v : t) v += d;
+    for (axisAlignedBox& tb : b.triangleBoxes) tb = axisAlignedBox(tb.min + d, tb.max + d);
+    return b;
+}
+
+
 double bodySeparation::segmentDistance
 (
     const vec3& p1, const vec3& q1, const vec3& p2, const vec3& q2
