@@ -19,6 +19,7 @@ import argparse, glob, math, os, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
 from immersedDEMData import readTable  # noqa: E402
+from immersedDEMBeds import garsideAlDibouni  # noqa: E402
 
 D, NU = 1.0, 0.0875
 
@@ -67,8 +68,7 @@ def main():
         us = (2 - 1)*1.0*D*D/(18*NU)/(1 + 0.15*re**0.687)
     print("for comparison, Schiller-Naumann's drag gives U_t %.5f m/s" % us)
     re = ut*D/NU
-    c = 0.1*re**0.9
-    n = (5.1 + 2.7*c)/(1 + c)
+    n = garsideAlDibouni(re)
     print("Re_t %.2f, Garside & Al-Dibouni n %.3f" % (re, n))
     print()
     print("| phi | spheres | U [m/s] | U/U_t | Richardson-Zaki (1-phi)^n | deviation | change over the window |")
