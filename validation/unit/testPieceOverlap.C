@@ -7,7 +7,9 @@ Description
     reason; and their contacts against CGAL's exact intersection of the
     whole meshes (exactOverlap) at 200 random poses per pair: ring-ring,
     rings linked through the hole, trilobe-trilobe, ring-prism and a ring
-    on a plane.
+    on a plane. The decomposition is the same, bit for bit, in every run
+    (each run of a program lays out its heap at other addresses, and CGAL's
+    orders follow them).
 
     Tolerances: volume and centroid 1e-9 (relative), the issue's target:
     both sides are exact up to the rounding of the intersection points to
@@ -31,8 +33,13 @@ Description
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <random>
+#include <string>
+#include <unistd.h>
 
 using namespace immersedDEM;
 
@@ -165,6 +172,80 @@ TEST(pieceOverlap, ringAndTrilobeDecomposeExactly)
     double V2 = 0;
     for (const auto& p : R2->pieces()) V2 += p->volume();
     EXPECT_NEAR(V2, 1.331*exact, 1e-9*exact);
+}
+
+
+// A digest of every bit of a decomposition's pieces, their order and
+// their neighbours, and of a union's surface
+std::string digest(const convexDecomposition& d, const triangleSoup& u)
+{
+    std::uint64_t h = 1469598103934665603ull;
+    auto add = [&h](const void* p, size_t n)
+    {
+        const auto* c = static_cast<const unsigned char*>(p);
+        for (size_t i = 0; i < n; ++i) h = (h ^ c[i])*1099511628211ull;
+    };
+    auto addSoup = [&](const triangleSoup& s)
+    {
+        for (const vec3& x : s.points) add(x.data(), 3*sizeof(double));
+        for (const triFace& f : s.faces) add(f.data(), sizeof(f));
+    };
+    for (const triangleSoup& p : d.pieces) addSoup(p);
+    for (const auto& n : d.neighbours) for (const int j : n) add(&j, sizeof(j));
+    addSoup(u);
+    return std::to_string(d.pieces.size()) + " pieces, digest " + std::to_string(h);
+}
+
+
+TEST(pieceOverlap, decompositionIsTheSameInEveryRun)
+{
+    // In a child: print the digest of a ring's and a trilobe's
+    // decompositions and of a union of three boxes
+    if (std::getenv("IMMERSEDDEM_PRINT_DECOMPOSITION"))
+    {
+        const triangleSoup none;
+        std::printf("ring: %s\n", digest(convexDecomposition::of(primitiveMeshes::hollowCylinder(2*mm, 1*mm, 4*mm, 24), 64), none).c_str());
+        const triangleSoup lobes = primitiveMeshes::lobed(3, 0.8*mm, 0.9*mm, 4*mm, 48);
+        std::printf("trilobe: %s\n", digest(convexDecomposition::of(lobes, 64), none).c_str());
+        std::vector<triangleSoup> parts;
+        for (int i = 0; i < 3; ++i)
+        {
+            triangleSoup b = primitiveMeshes::box(vec3(1*mm, 0.5*mm, (1 + 0.3*i)*mm));
+            for (vec3& x : b.points) x.x() += 2*i*mm;
+            parts.push_back(b);
+        }
+        triangleSoup u;
+        const convexDecomposition d = convexDecomposition::ofParts(parts, u);
+        std::printf("parts: %s\n", digest(d, u).c_str());
+        return;
+    }
+    // Three runs of this test program in children: a program's heap
+    // lies at other addresses in each run (address space layout
+    // randomisation), where CGAL's orders of corners, faces and pieces
+    // follow the addresses (seen: four digests in four runs)
+    std::vector<std::string> out;
+    for (int run = 0; run < 3; ++run)
+    {
+        const std::string command =
+            "IMMERSEDDEM_PRINT_DECOMPOSITION=1 /proc/" + std::to_string(getpid())
+          + "/exe --gtest_filter=pieceOverlap.decompositionIsTheSameInEveryRun 2>&1";
+        FILE* f = popen(command.c_str(), "r");
+        ASSERT_NE(f, nullptr);
+        std::string text;
+        char line[512];
+        while (std::fgets(line, sizeof line, f))
+        {
+            if (!std::strncmp(line, "ring:", 5) || !std::strncmp(line, "trilobe:", 8) || !std::strncmp(line, "parts:", 6))
+            {
+                text += line;
+            }
+        }
+        ASSERT_EQ(pclose(f), 0) << text;
+        out.push_back(text);
+    }
+    ASSERT_NE(out[0].find("parts:"), std::string::npos) << out[0];
+    EXPECT_EQ(out[1], out[0]);
+    EXPECT_EQ(out[2], out[0]);
 }
 
 

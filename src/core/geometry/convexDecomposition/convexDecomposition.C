@@ -13,8 +13,11 @@
 #include <CGAL/convex_decomposition_3.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <tuple>
 
 namespace immersedDEM
 {
@@ -28,6 +31,22 @@ using exactPolyhedron = CGAL::Polyhedron_3<exactKernel>;
 using nef = CGAL::Nef_polyhedron_3<exactKernel>;
 
 
+// A coordinate as a double. An exact (lazy) number is converted from its
+// exact value: its interval approximation is tighter or looser depending
+// on whether CGAL happened to compute the exact value before, and that
+// follows the order CGAL visits its cells in, which follows the heap's
+// addresses (different from run to run)
+double nearest(const exactKernel::FT& v)
+{
+    return CGAL::to_double(CGAL::exact(v));
+}
+
+double nearest(double v)
+{
+    return v;
+}
+
+
 // A triangulated surface mesh in doubles: points closer than weld
 // (rounding made them one, or a cut passed within round-off of a corner)
 // are one point, and triangles that lose a corner so are dropped
@@ -39,7 +58,7 @@ triangleSoup soupOf(const Mesh& m, double weld)
     for (const auto v : m.vertices())
     {
         const auto& p = m.point(v);
-        const vec3 x(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+        const vec3 x(nearest(p.x()), nearest(p.y()), nearest(p.z()));
         int same = -1;
         for (size_t i = 0; i < s.points.size() && same < 0; ++i)
         {
@@ -66,6 +85,41 @@ triangleSoup soupOf(const Mesh& m, double weld)
 }
 
 
+// The surface in a canonical order: its points sorted, each face
+// starting at its smallest point (orientation kept), the faces sorted.
+// CGAL's hull and Nef conversions list points and faces in an order that
+// follows the heap's addresses, which differ from run to run: ordered so,
+// every sum over a piece has the same round-off in every run
+triangleSoup canonical(const triangleSoup& s)
+{
+    const int n = int(s.points.size());
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    auto key = [&](int i) { const vec3& p = s.points[i]; return std::make_tuple(p.x(), p.y(), p.z()); };
+    std::sort(order.begin(), order.end(), [&](int i, int j) { return key(i) < key(j); });
+    std::vector<int> to(n);
+    triangleSoup c;
+    for (int k = 0; k < n; ++k)
+    {
+        to[order[k]] = k;
+        c.points.push_back(s.points[order[k]]);
+    }
+    for (const triFace& f : s.faces)
+    {
+        triFace g{to[f[0]], to[f[1]], to[f[2]]};
+        while (g[0] > g[1] || g[0] > g[2]) g = triFace{g[1], g[2], g[0]};
+        c.faces.push_back(g);
+    }
+    std::sort
+    (
+        c.faces.begin(), c.faces.end(),
+        [](const triFace& x, const triFace& y)
+        { return std::make_tuple(x[0], x[1], x[2]) < std::make_tuple(y[0], y[1], y[2]); }
+    );
+    return c;
+}
+
+
 using hullKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using hullPoint = hullKernel::Point_3;
 
@@ -74,7 +128,7 @@ triangleSoup hullOf(const std::vector<hullPoint>& points)
 {
     CGAL::Surface_mesh<hullPoint> m;
     CGAL::convex_hull_3(points.begin(), points.end(), m);
-    return soupOf(m, 0);
+    return canonical(soupOf(m, 0));
 }
 
 
@@ -256,12 +310,15 @@ convexDecomposition convexDecomposition::of(const triangleSoup& surface, int max
         }
         CGAL::convex_decomposition_3(N);
 
+        // Each piece with its sorted corners, the key that orders them
+        std::vector<std::pair<std::vector<hullPoint>, triangleSoup>> keyed;
+
         // The first volume is the outer space; marked volumes are pieces
         auto c = N.volumes_begin();
         for (++c; c != N.volumes_end(); ++c)
         {
             if (!c->mark()) continue;
-            if (int(d.pieces.size()) >= maxPieces)
+            if (int(keyed.size()) >= maxPieces)
             {
                 d.pieces.clear();
                 d.why = "more than " + std::to_string(maxPieces) + " convex pieces";
@@ -278,15 +335,28 @@ convexDecomposition convexDecomposition::of(const triangleSoup& surface, int max
                 const auto& x = v->point();
                 corners.emplace_back
                 (
-                    CGAL::to_double(x.x()), CGAL::to_double(x.y()), CGAL::to_double(x.z())
+                    nearest(x.x()), nearest(x.y()), nearest(x.z())
                 );
             }
+            // (in sorted order: CGAL lists a piece's corners, and the
+            // pieces, in an order that follows the heap's addresses,
+            // which differ from run to run; sorted, the hulls and the
+            // pieces' order are the same in every run, and so are the
+            // round-off of every sum over them)
+            std::sort(corners.begin(), corners.end());
+            corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
             triangleSoup piece = hullOf(corners);
             if (piece.faces.size() >= 4)
             {
-                d.pieces.push_back(std::move(piece));
+                keyed.push_back({std::move(corners), std::move(piece)});
             }
         }
+        std::sort
+        (
+            keyed.begin(), keyed.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; }
+        );
+        for (auto& k : keyed) d.pieces.push_back(std::move(k.second));
     }
     catch (const std::exception& e)
     {
@@ -347,7 +417,7 @@ convexDecomposition convexDecomposition::ofParts
         }
         exactMesh u;
         CGAL::convert_nef_polyhedron_to_polygon_mesh(N, u, true);
-        union_ = soupOf(u, 1e-12*radius);
+        union_ = canonical(soupOf(u, 1e-12*radius));
     }
     catch (const std::exception& e)
     {
