@@ -142,10 +142,12 @@ demSettings Foam::immersedDEMReaders::readSettings(const dictionary& top)
     }
     if (const dictionary* l = top.findDict("lubrication"))
     {
-        immersedDEMChecks::allowOnly(*l, {"active", "activation", "roughness"});
+        immersedDEMChecks::allowOnly(*l, {"active", "activation", "pairActivation", "roughness"});
         s.lubrication.active = l->getOrDefault<bool>("active", s.lubrication.active);
         s.lubrication.activation =
             immersedDEMChecks::inRangeOrDefault(*l, "activation", 0.1, 10, s.lubrication.activation);
+        s.lubrication.pairActivation =
+            immersedDEMChecks::inRangeOrDefault(*l, "pairActivation", 0.1, 10, s.lubrication.pairActivation);
         s.lubrication.roughness =
             immersedDEMChecks::inRangeOrDefault(*l, "roughness", 1e-6, 0.1, s.lubrication.roughness);
     }
@@ -153,8 +155,8 @@ demSettings Foam::immersedDEMReaders::readSettings(const dictionary& top)
     {
         FatalIOErrorInFunction(top)
             << "Keyword 'lubrication' in " << top.name()
-            << " must be a dictionary: lubrication { active yes; activation 1;"
-            << " roughness 1e-3; }" << nl << exit(FatalIOError);
+            << " must be a dictionary: lubrication { active yes; activation 1.7;"
+            << " pairActivation 2.5; roughness 1e-3; }" << nl << exit(FatalIOError);
     }
     if (const dictionary* t = top.findDict("time"))
     {

@@ -29,7 +29,7 @@ double lubricationFilms::reach
     {
         if (!isWall[i]) h = std::max(h, bodies[i].fluidCellSize);
     }
-    return settings_.activation*h;
+    return std::max(settings_.activation, settings_.pairActivation)*h;
 }
 
 
@@ -74,7 +74,8 @@ void lubricationFilms::lubricate
 {
     const rigidBody& A = bodies[ia];
     const rigidBody& B = bodies[ib];
-    // The activation distance: in the finer fluid cells of the two
+    // The activation distance (a wall's, or a pair of bodies'): in the
+    // finer fluid cells of the two
     double cell = 0;
     for (const rigidBody* b : {&A, &B})
     {
@@ -84,7 +85,8 @@ void lubricationFilms::lubricate
         }
     }
     const lubricationSettings& ls = settings_;
-    const double hAct = ls.activation*cell;
+    const double hAct =
+        (isWall[ia] || isWall[ib] ? ls.activation : ls.pairActivation)*cell;
     if (!(hAct > 0))
     {
         return;
