@@ -8,11 +8,13 @@ addedMassCoefficient 1), maxCo-controlled step, bodies of glass density
 velocity and motion (free, fixed, prescribed). --sealedWalls switches
 sealedWalls on in the fvOption; --nu sets the fluid's viscosity,
 --lubrication the entries of the lubrication dictionary, --deltaT a fixed
-CFD step (no maxCo control).
+CFD step (no maxCo control); --periodic makes the box cyclic in all three
+directions, --gravity sets g.
 
   makeCase.py <case> --body a:cube:-0.005:0:0.1 [--body ...] [--wallPatch]
               [--lo "x y z"] [--hi "x y z"] [--h 3.125] [--endTime 0.2]
               [--youngsModulus 6.3e10] [--contact "level 2;"] [--sealedWalls]
+              [--periodic] [--gravity "0 0 -9.81"]
 """
 import argparse, os, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -33,12 +35,15 @@ p.add_argument("--contact", default="", help="entries of the contact dictionary"
 p.add_argument("--lubrication", default="", help="entries of the lubrication dictionary")
 p.add_argument("--nu", default="1e-06", help="kinematic viscosity [m2/s]")
 p.add_argument("--deltaT", default="", help="fixed CFD step [s]")
+p.add_argument("--periodic", action="store_true", help="cyclic in all three directions instead of walls")
+p.add_argument("--gravity", default="0 0 -9.81", help="g [m/s2]")
 a = p.parse_args()
 lo = [float(x) for x in a.lo.split()]
 hi = [float(x) for x in a.hi.split()]
 n = [round((h - l)/a.h) for l, h in zip(lo, hi)]
 write = tankCase.writer(a.case)
-tankCase.writeTank(write, lo, hi, n, 0.001, a.nu, " sealedWalls yes;" if a.sealedWalls else "")
+tankCase.writeTank(write, lo, hi, n, 0.001, a.nu, " sealedWalls yes;" if a.sealedWalls else "",
+                   a.periodic, a.gravity)
 write("system/controlDict", "dictionary", "controlDict", """application pimpleFoam;
 libs ("libimmersedDEM.so");
 startFrom latestTime; startTime 0; stopAt endTime; endTime %s;

@@ -110,12 +110,7 @@ triangleSoup canonical(const triangleSoup& s)
         while (g[0] > g[1] || g[0] > g[2]) g = triFace{g[1], g[2], g[0]};
         c.faces.push_back(g);
     }
-    std::sort
-    (
-        c.faces.begin(), c.faces.end(),
-        [](const triFace& x, const triFace& y)
-        { return std::make_tuple(x[0], x[1], x[2]) < std::make_tuple(y[0], y[1], y[2]); }
-    );
+    std::sort(c.faces.begin(), c.faces.end());
     return c;
 }
 
