@@ -315,6 +315,59 @@ TEST(lubrication, noFluidOrSwitchedOffNoForce)
 }
 
 
+TEST(lubrication, twoBodiesStartTheirFilmAtThePairActivation)
+{
+    // A ball 2 cells from a wall, and a ball 2 cells from a second ball,
+    // each approaching: the wall's film starts at activation (1.7 cells,
+    // the default) and stays off; the pair's at pairActivation (2.5, the
+    // default: both surfaces immersed) and acts. With pairActivation 1.7
+    // the pair stays off too
+    const double R = 0.005, cell = 5e-4, v0 = -0.01;
+    for (const double pairActivation : {2.5, 1.7})
+    {
+        contactMaterial soft{"soft", 1e6, 0.3, 0.3, 0.5};
+        demSettings s;
+        s.overlapMethod = "sphere";
+        EXPECT_EQ(s.lubrication.activation, 1.7);
+        EXPECT_EQ(s.lubrication.pairActivation, 2.5);
+        s.lubrication.pairActivation = pairActivation;
+        demSolver dem({soft}, s);
+        rigidBody floor("floor", std::make_shared<halfSpaceShape>(), 1);
+        floor.pose = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
+        floor.motion = motionType::fixed;
+        dem.addBody(floor, true);
+        // Far apart sideways (10 R): the balls meet the wall or each other
+        // only as placed
+        rigidBody onWall("onWall", std::make_shared<sphereShape>(R), 2500);
+        onWall.pose = at(vec3(0, 0, R + 2*cell));
+        onWall.velocity = vec3(0, 0, v0);
+        onWall.fluidCellSize = cell;
+        const int w = dem.addBody(onWall);
+        rigidBody lower("lower", std::make_shared<sphereShape>(R), 2500);
+        lower.pose = at(vec3(10*R, 0, 10*R));
+        lower.motion = motionType::fixed;
+        lower.fluidCellSize = cell;
+        dem.addBody(lower);
+        rigidBody upper("upper", std::make_shared<sphereShape>(R), 2500);
+        upper.pose = at(vec3(10*R, 0, 12*R + 2*cell));
+        upper.velocity = vec3(0, 0, v0);
+        upper.fluidCellSize = cell;
+        const int u = dem.addBody(upper);
+        dem.setFluidViscosity(0.1);
+        dem.advance(1e-5);   // moves 1e-7 m: the gaps stay near 2 cells
+        EXPECT_EQ(dem.bodies()[w].lubricationForce.norm(), 0) << pairActivation;
+        if (pairActivation > 2)
+        {
+            EXPECT_GT(dem.bodies()[u].lubricationForce.z(), 0);
+        }
+        else
+        {
+            EXPECT_EQ(dem.bodies()[u].lubricationForce.norm(), 0);
+        }
+    }
+}
+
+
 TEST(lubrication, tangentialMotionFeelsNoNormalFilm)
 {
     coasting c;

@@ -156,7 +156,7 @@ demSettings Foam::immersedDEMReaders::readSettings(const dictionary& top)
         FatalIOErrorInFunction(top)
             << "Keyword 'lubrication' in " << top.name()
             << " must be a dictionary: lubrication { active yes; activation 1.7;"
-            << " pairActivation 1.7; roughness 1e-3; }" << nl << exit(FatalIOError);
+            << " pairActivation 2.5; roughness 1e-3; }" << nl << exit(FatalIOError);
     }
     if (const dictionary* t = top.findDict("time"))
     {

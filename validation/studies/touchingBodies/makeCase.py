@@ -9,12 +9,13 @@ velocity and motion (free, fixed, prescribed). --sealedWalls switches
 sealedWalls on in the fvOption; --nu sets the fluid's viscosity,
 --lubrication the entries of the lubrication dictionary, --deltaT a fixed
 CFD step (no maxCo control); --periodic makes the box cyclic in all three
-directions, --gravity sets g.
+directions (--periodic xy: in x and y, walls at the bottom and top),
+--gravity sets g.
 
   makeCase.py <case> --body a:cube:-0.005:0:0.1 [--body ...] [--wallPatch]
               [--lo "x y z"] [--hi "x y z"] [--h 3.125] [--endTime 0.2]
               [--youngsModulus 6.3e10] [--contact "level 2;"] [--sealedWalls]
-              [--periodic] [--gravity "0 0 -9.81"]
+              [--periodic [xy]] [--gravity "0 0 -9.81"]
 """
 import argparse, os, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -35,7 +36,8 @@ p.add_argument("--contact", default="", help="entries of the contact dictionary"
 p.add_argument("--lubrication", default="", help="entries of the lubrication dictionary")
 p.add_argument("--nu", default="1e-06", help="kinematic viscosity [m2/s]")
 p.add_argument("--deltaT", default="", help="fixed CFD step [s]")
-p.add_argument("--periodic", action="store_true", help="cyclic in all three directions instead of walls")
+p.add_argument("--periodic", nargs="?", const="xyz", default="",
+               help="cyclic in these directions (xyz without a value) instead of walls")
 p.add_argument("--gravity", default="0 0 -9.81", help="g [m/s2]")
 a = p.parse_args()
 lo = [float(x) for x in a.lo.split()]

@@ -1,8 +1,8 @@
 """The files of a small water tank case shared by the dense-suspension case
 tests (makeCase.py, also for validation/studies/lubricationSpheres) and
 the coupled scale benchmark (validation/benchmarks/settlingLattice/
-makeLattice.py): a box of wall patches (noSlip, one patch 'walls'; or
-periodic in all three directions), cubic cells, laminar pimpleFoam with the immersedBoundaryForce
+makeLattice.py): a box of wall patches (noSlip, one patch 'walls'), or
+periodic in some or all three directions, cubic cells, laminar pimpleFoam with the immersedBoundaryForce
 fvOption and the immersedDEM function object."""
 import os
 
@@ -19,12 +19,29 @@ def writer(case):
     return write
 
 
-def writeTank(write, lo, hi, n, scale, nu, fvOptionEntries="", periodic=False, g="0 0 -9.81"):
+def writeTank(write, lo, hi, n, scale, nu, fvOptionEntries="", periodic="", g="0 0 -9.81"):
     """0/U, 0/p, g, transport and turbulence properties, fvOptions and the
     blockMeshDict of the box [lo, hi] (in units of scale m) with n cells;
-    periodic: cyclic patches in all three directions instead of walls"""
-    wallsU, wallsP = ('".*" { type cyclic; }', '".*" { type cyclic; }') if periodic \
-        else ("walls { type noSlip; }", "walls { type zeroGradient; }")
+    periodic: the directions ("xyz", "xy", ...; True for all three) whose
+    two faces are a cyclic pair; the other faces are the wall patch
+    'walls'"""
+    periodic = "xyz" if periodic is True else (periodic or "")
+    if any(d not in "xyz" for d in periodic):
+        raise ValueError("periodic: directions among x, y, z, not %r" % periodic)
+    # The box's two faces normal to each direction (hex vertex numbering)
+    faces = {"x": ("(0 4 7 3)", "(1 2 6 5)"), "y": ("(0 1 5 4)", "(3 7 6 2)"),
+             "z": ("(0 3 2 1)", "(4 5 6 7)")}
+    wallFaces = " ".join(f for d in "xyz" if d not in periodic for f in faces[d])
+    patches = ["    walls { type wall; faces ( %s ); }" % wallFaces] if wallFaces else []
+    for d in "xyz":
+        if d in periodic:
+            # (the y pair's second face as the runs before this option had it)
+            second = "(2 3 7 6)" if d == "y" else faces[d][1]
+            patches += ["    %s0 { type cyclic; neighbourPatch %s1; faces (%s); }" % (d, d, faces[d][0]),
+                        "    %s1 { type cyclic; neighbourPatch %s0; faces (%s); }" % (d, d, second)]
+    cyclic = " ".join('%s%d { type cyclic; }' % (d, k) for d in periodic for k in (0, 1))
+    wallsU = " ".join(["walls { type noSlip; }"]*bool(wallFaces) + [cyclic]*bool(cyclic))
+    wallsP = " ".join(["walls { type zeroGradient; }"]*bool(wallFaces) + [cyclic]*bool(cyclic))
     write("0/U", "volVectorField", "U", "dimensions [0 1 -1 0 0 0 0];\n"
           "internalField uniform (0 0 0);\nboundaryField { %s }\n" % wallsU)
     write("0/p", "volScalarField", "p", "dimensions [0 2 -2 0 0 0 0];\n"
@@ -42,22 +59,7 @@ def writeTank(write, lo, hi, n, scale, nu, fvOptionEntries="", periodic=False, g
     write("system/blockMeshDict", "dictionary", "blockMeshDict",
           "scale %g;\nvertices (" % scale + " ".join("(%.9g %.9g %.9g)" % c for c in corners) + ");\n"
           "blocks ( hex (0 1 2 3 4 5 6 7) (%d %d %d) simpleGrading (1 1 1) );\n" % tuple(n) +
-          (periodicBoundary if periodic else
-           "boundary ( walls { type wall; faces ( (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)"
-           " (0 3 2 1) (4 5 6 7) ); } );\n"))
-
-
-# The box's faces as three cyclic pairs
-periodicBoundary = """boundary
-(
-    x0 { type cyclic; neighbourPatch x1; faces ((0 4 7 3)); }
-    x1 { type cyclic; neighbourPatch x0; faces ((1 2 6 5)); }
-    y0 { type cyclic; neighbourPatch y1; faces ((0 1 5 4)); }
-    y1 { type cyclic; neighbourPatch y0; faces ((2 3 7 6)); }
-    z0 { type cyclic; neighbourPatch z1; faces ((0 3 2 1)); }
-    z1 { type cyclic; neighbourPatch z0; faces ((4 5 6 7)); }
-);
-"""
+          "boundary\n(\n" + "\n".join(patches) + "\n);\n")
 
 
 def writeSolver(write):
