@@ -264,9 +264,11 @@ void Foam::bodyFluidSums::removeSealedFacePressure
     }
     const surroundingPressure around(projection, dem, p, forced, nbrForced, pNbr);
 
-    auto remove = [&](const label i, const vector& S, const scalar pf, const point& x)
+    // (weight: the share of the face's pressure taken out)
+    auto remove =
+        [&](const label i, const vector& S, const scalar pf, const point& x, const scalar weight = 1)
     {
-        const vector dF = (pf - around.at(i, x))*S;
+        const vector dF = weight*(pf - around.at(i, x))*S;
         const vector r = x - v(dem.bodies()[i].pose.position());
         penalty[i] += dF;
         penaltyMoment[i] += r ^ dF;
@@ -274,7 +276,34 @@ void Foam::bodyFluidSums::removeSealedFacePressure
     for (const label celli : projection.touched())
     {
         const label i = forced[celli];
-        if (i < 0) continue;
+        if (i < 0)
+        {
+            // A cell on its way to being forced (0 < K deltaT < 1: a fluid
+            // cell next to a body's surface) has that share of its wall
+            // faces' pressure taken out, so that the share grows with K
+            // as the surface comes near instead of jumping from 0 to 1
+            // when K deltaT reaches 1. Taken out at once, the squeeze
+            // pressure on a ring of wall faces left a sphere's load in
+            // one step, and its force against the gap went in a sawtooth
+            // (validation/studies/lubricationWall)
+            const label j = bodyOf[celli];
+            const scalar KdT = projection.cellCoefficient(celli, deltaT)*deltaT;
+            if (!wallFaces || j < 0 || !(KdT > 0)) continue;
+            const vector sh = projection.bodyShift(celli);
+            for (const label facei : cells[celli])
+            {
+                if (facei < nInternal) continue;
+                const label patchi = patches.whichPatch(facei);
+                if (patches[patchi].coupled() || !U.boundaryField()[patchi].fixesValue()) continue;
+                const label pfi = facei - patches[patchi].start();
+                remove
+                (
+                    j, mesh.Sf().boundaryField()[patchi][pfi], p.boundaryField()[patchi][pfi],
+                    mesh.Cf().boundaryField()[patchi][pfi] - sh, KdT
+                );
+            }
+            continue;
+        }
         // (faces seen from the image of the body that set the cell)
         const vector sh = projection.bodyShift(celli);
         for (const label facei : cells[celli])
