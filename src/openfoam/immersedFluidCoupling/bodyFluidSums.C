@@ -275,41 +275,26 @@ void Foam::bodyFluidSums::removeSealedFacePressure
     };
     for (const label celli : projection.touched())
     {
-        const label i = forced[celli];
-        if (i < 0)
-        {
-            // A cell on its way to being forced (0 < K deltaT < 1: a fluid
-            // cell next to a body's surface) has that share of its wall
-            // faces' pressure taken out, so that the share grows with K
-            // as the surface comes near instead of jumping from 0 to 1
-            // when K deltaT reaches 1. Taken out at once, the squeeze
-            // pressure on a ring of wall faces left a sphere's load in
-            // one step, and its force against the gap went in a sawtooth
-            // (validation/studies/lubricationWall)
-            const label j = bodyOf[celli];
-            const scalar KdT = projection.cellCoefficient(celli, deltaT)*deltaT;
-            if (!wallFaces || j < 0 || !(KdT > 0)) continue;
-            const vector sh = projection.bodyShift(celli);
-            for (const label facei : cells[celli])
-            {
-                if (facei < nInternal) continue;
-                const label patchi = patches.whichPatch(facei);
-                if (patches[patchi].coupled() || !U.boundaryField()[patchi].fixesValue()) continue;
-                const label pfi = facei - patches[patchi].start();
-                remove
-                (
-                    j, mesh.Sf().boundaryField()[patchi][pfi], p.boundaryField()[patchi][pfi],
-                    mesh.Cf().boundaryField()[patchi][pfi] - sh, KdT
-                );
-            }
-            continue;
-        }
+        // A cell on its way to being forced (0 < K deltaT < 1: a fluid
+        // cell next to a body's surface) has that share of its wall faces'
+        // pressure taken out, so that the share grows with K as the
+        // surface comes near instead of jumping from 0 to 1 when K deltaT
+        // reaches 1. Taken out at once, the squeeze pressure on a ring of
+        // wall faces left a sphere's load in one step, and its force
+        // against the gap went in a sawtooth
+        // (validation/studies/lubricationWall)
+        const bool isForced = forced[celli] >= 0;
+        const label i = isForced ? forced[celli] : bodyOf[celli];
+        const scalar share =
+            isForced ? 1 : projection.cellCoefficient(celli, deltaT)*deltaT;
+        if (!isForced && (!wallFaces || i < 0 || !(share > 0))) continue;
         // (faces seen from the image of the body that set the cell)
         const vector sh = projection.bodyShift(celli);
         for (const label facei : cells[celli])
         {
             if (facei < nInternal)
             {
+                if (!isForced) continue;
                 const bool isOwner = own[facei] == celli;
                 const label n = isOwner ? nei[facei] : own[facei];
                 if (forced[n] < 0 || forced[n] == i) continue;
@@ -325,6 +310,7 @@ void Foam::bodyFluidSums::removeSealedFacePressure
             const point& x = mesh.Cf().boundaryField()[patchi][pfi];
             if (patches[patchi].coupled())
             {
+                if (!isForced) continue;
                 const label n = nbrForced[facei - nInternal];
                 if (n < 0 || n == i) continue;
                 const scalar wf = mesh.weights().boundaryField()[patchi][pfi];
@@ -333,7 +319,7 @@ void Foam::bodyFluidSums::removeSealedFacePressure
             }
             else if (wallFaces && U.boundaryField()[patchi].fixesValue())
             {
-                remove(i, S, pb[pfi], x - sh);
+                remove(i, S, pb[pfi], x - sh, share);
             }
         }
     }
