@@ -6,6 +6,19 @@ Every function takes SI units. Sources:
   packed bed, dp/L = 150 mu u (1-eps)^2/(eps^3 d^2) + 1.75 rho u^2 (1-eps)/(eps^3 d),
   and with Mehta & Hawley's (1969) wall factor M = 1 + 2 d/(3 D (1-eps))
   on the specific surface.
+- Eisfeld & Schnitzlein (2001), Chem. Eng. Sci. 56, 4321: Ergun's form
+  refitted with the wall, on 2300 measured points of spheres and
+  cylinders in tubes of D/d 1.6-250,
+  psi = dp/L d/(rho u^2) = K1 A^2/Re (1-eps)^2/eps^3 + A/B (1-eps)/eps^3,
+  Re = rho u d/mu, A = 1 + 2/(3 (D/d)(1-eps)), B = (k1 (d/D)^2 + k2)^2;
+  spheres K1 154, k1 1.15, k2 0.87; all shapes together 155, 1.42, 0.83
+  (constants as transcribed from the paper in the open-source correlation
+  collection nikitin-pro/whr-optimization-framework, models_pressure_drop.py).
+- Benyahia & O'Neill (2005), Part. Sci. Technol. 23, 169: the mean porosity
+  of a packed tube against D/d, spheres eps = 0.390 + 1.740/(D/d + 1.140)^2
+  (mean error 1.5%, D/d 1.5-50), solid cylinders eps = 0.373 + 1.703/
+  (D/d_pe + 0.611)^2 (d_pe the volume-equivalent diameter; 1.6%, 1.7-26.3)
+  (as given in the fluids library, CalebBell/fluids, packed_bed.py).
 - Wen & Yu (1966), AIChE Symp. Ser. 62, 100: Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7.
 - Haider & Levenspiel (1989), Powder Technol. 58, 63: the drag of
   spheres and non-spherical bodies against Re and sphericity.
@@ -35,6 +48,26 @@ def ergun(mu, rho, u, eps, d, D=None):
     M = 1 + 2*d/(3*D*(1 - eps)) if D else 1.0
     return (150*mu*u*(1 - eps)**2*M**2/(eps**3*d**2)
             + 1.75*rho*u*u*(1 - eps)*M/(eps**3*d))
+
+
+def eisfeldSchnitzlein(mu, rho, u, eps, d, D, shape="sphere"):
+    """Eisfeld & Schnitzlein's (2001) wall-corrected pressure gradient
+    [Pa/m]; shape "sphere" or "any" (their fit over spheres and cylinders
+    together), d the particle's (Sauter) diameter, D the tube's."""
+    K1, k1, k2 = {"sphere": (154.0, 1.15, 0.87), "any": (155.0, 1.42, 0.83)}[shape]
+    A = 1 + 2/(3*(D/d)*(1 - eps))
+    B = (k1*(d/D)**2 + k2)**2
+    Re = rho*u*d/mu
+    psi = K1*A*A/Re*(1 - eps)**2/eps**3 + A/B*(1 - eps)/eps**3
+    return psi*rho*u*u/d
+
+
+def benyahiaONeillPorosity(DOverD, shape="sphere"):
+    """Benyahia & O'Neill's (2005) mean porosity of a bed in a tube of D/d
+    (spheres), or D/d_pe (solid cylinders, shape "cylinder")."""
+    if shape == "sphere":
+        return 0.390 + 1.740/(DOverD + 1.140)**2
+    return 0.373 + 1.703/(DOverD + 0.611)**2
 
 
 def buoyantWeightGradient(rho, rhoP, g, eps):
@@ -118,16 +151,17 @@ def garsideAlDibouni(ret):
     return (5.1 + 2.7*c)/(1 + c)
 
 
-def readTaps(case):
+def readTaps(case, offset=0.25e-3):
     """{z [m]: (times, p)} of a bed template's pressure taps: the planes
     postProcessing/p_z<mm>/ (at <mm> + 0.25 mm) and the inlet pInlet (z 0),
     from every run's surfaceFieldValue.dat (later runs win where they
-    overlap). p is the kinematic pressure [m2/s2]."""
+    overlap; offset: the planes' height above <mm>). p is the kinematic
+    pressure [m2/s2]."""
     taps = {}
     for d in glob.glob(os.path.join(case, "postProcessing", "p_z*")) \
             + glob.glob(os.path.join(case, "postProcessing", "pInlet")):
         name = os.path.basename(d)
-        z = 0.0 if name == "pInlet" else (int(name[3:]) + 0.25)*1e-3
+        z = 0.0 if name == "pInlet" else int(name[3:])*1e-3 + offset
         rows = []
         for f in sorted(glob.glob(os.path.join(d, "*", "surfaceFieldValue*.dat")),
                         key=lambda f: float(os.path.basename(os.path.dirname(f)))):
