@@ -79,6 +79,14 @@ def readBeads(path):
     return beads
 
 
+def pourBeads(pour):
+    """The beads of a pour at its last time: (x, y, z, r) each."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from fixedBed import readBeads as fromPour
+    beads, *_ = fromPour(pour)
+    return [(c[0], c[1], c[2], r) for _, c, r in beads]
+
+
 def solidArea(beads, z):
     return sum(math.pi*(r*r - (z - zc)**2) for _, _, zc, r in beads if abs(z - zc) < r)
 
@@ -118,6 +126,31 @@ def regionPorosity(beads, half, z0, z1, wallBand, samples=400000, seed=7):
     return {k: 1 - v[1]/v[0] for k, v in count.items()}, {k: v[0] for k, v in count.items()}
 
 
+def bedPorosity(beads, half, zSupport):
+    """The bed's porosity figures (see the docstring) from its beads."""
+    area = (2*half)**2
+    dsv = sum(2*r**3 for *_, r in beads)/sum(r*r for *_, r in beads)
+    zTop = max(b[2] + b[3] for b in beads)
+    dz = dsv/40
+    zs = [zSupport + (k + 0.5)*dz for k in range(int((zTop - zSupport)/dz) + 1)]
+    phi = [solidArea(beads, z)/area for z in zs]
+    V = sum(4/3*math.pi*r**3 for *_, r in beads)
+    mean = sum(phi)*dz/(zTop - zSupport)
+    k = len(phi) - 1
+    while k > 0 and phi[k] < 0.5*mean:
+        k -= 1
+    top = zs[k] + 0.5*dz
+    L = top - zSupport
+    eps = 1 - sum(f for z, f in zip(zs, phi) if z < top)*dz/L
+    c0, c1 = zSupport + 2*dsv, top - 2*dsv
+    core = [f for z, f in zip(zs, phi) if c0 < z < c1]
+    if not core:
+        fail("a bed of %.2f d has no core two d from either end" % (L/dsv))
+    reg, _ = regionPorosity(beads, half, c0, c1, 0.5*dsv)
+    return {"dsv": dsv, "top": top, "L": L, "eps": eps, "epsCore": 1 - sum(core)/len(core), "zs": zs, "phi": phi,
+            "wall": reg["wall"], "centre": reg["centre"], "integral": sum(phi)*dz*area/V}
+
+
 def main():
     args = sys.argv[1:]
     out, plot = None, True
@@ -154,36 +187,24 @@ def main():
     Uin = float(entry(bp, "Uin"))
     t = open(os.path.join(case0, "constant", "immersedDEMProperties")).read()
     zSupport = float(re.search(r"support\s*\{[^}]*point\s*\(\s*\S+\s+\S+\s+(\S+)\s*\)", t).group(1))
-    dsv = sum(2*r**3 for *_, r in beads)/sum(r*r for *_, r in beads)
-    zTop = max(b[2] + b[3] for b in beads)
-
-    # The bed: porosity profile from exact sections
-    dz = dsv/40
-    zs = [zSupport + (k + 0.5)*dz for k in range(int((zTop - zSupport)/dz) + 1)]
-    phi = [solidArea(beads, z)/area for z in zs]
-    V = sum(4/3*math.pi*r**3 for *_, r in beads)
-    mean = sum(phi)*dz/(zTop - zSupport)
-    k = len(phi) - 1
-    while k > 0 and phi[k] < 0.5*mean:
-        k -= 1
-    top = zs[k] + 0.5*dz
-    L = top - zSupport
-    eps = 1 - sum(f for z, f in zip(zs, phi) if z < top)*dz/L
-    c0, c1 = zSupport + 2*dsv, top - 2*dsv
-    core = [f for z, f in zip(zs, phi) if c0 < z < c1]
-    epsCore = 1 - sum(core)/len(core) if core else float("nan")
-    reg, n = regionPorosity(beads, half, c0, c1, 0.5*dsv) if core else ({}, {})
+    say("Packed-bed resolution study (issue 48): the settled beds of %s" % os.path.normpath(work))
+    say("Porosity: exact sections of the beads every d/40 (whole bed: support to top, the top where the solid"
+        " fraction coming down first reaches half the bed's mean; core: two d from either end); wall region: within"
+        " d/2 of a side; against Benyahia & O'Neill (2005), spheres at the tube's D/d (hydraulic diameter)")
+    bed = None
+    for label, b in [("frozen bed (%s)" % os.path.basename(case0), beads)] + \
+            [("%s (%s)" % (d, open(os.path.join(work, d, "label")).read().strip()), pourBeads(os.path.join(work, d)))
+             for d in sorted(os.listdir(work)) if d.startswith("pour-") and os.path.isfile(os.path.join(work, d, "done"))]:
+        r = bedPorosity(b, half, zSupport)
+        eBO = benyahiaONeillPorosity(D/r["dsv"])
+        say("%s: %d beads, d_sv %.4g mm (sections' integral %.5f of the volume), D/d %.3f; L %.4g mm = %.2f d;"
+            " porosity %.4f, core %.4f (wall region %.4f, centre %.4f); Benyahia & O'Neill %.4f: bed %+.1f%%,"
+            " core %+.1f%%" % (label, len(b), r["dsv"]*1e3, r["integral"], D/r["dsv"], r["L"]*1e3, r["L"]/r["dsv"],
+                                r["eps"], r["epsCore"], r["wall"], r["centre"], eBO, 100*(r["eps"]/eBO - 1),
+                                100*(r["epsCore"]/eBO - 1)))
+        bed = bed or r
+    dsv, top, L, eps, zs, phi = (bed[k] for k in ("dsv", "top", "L", "eps", "zs", "phi"))
     eBO = benyahiaONeillPorosity(D/dsv)
-    say("Packed-bed resolution study (issue 48): the settled bed of %s, frozen" % os.path.basename(os.path.normpath(work)))
-    say("Beads: %d, Sauter diameter %.4g mm (volume %.4g m3; the sections' integral %.5f of it); tube %g mm square,"
-        " D/d %.3f" % (len(beads), dsv*1e3, V, sum(phi)*dz*area/V, D*1e3, D/dsv))
-    say("Bed: support %.4g mm, top %.4g mm, L %.4g mm = %.2f d; porosity %.4f; core (%.3g-%.3g mm, two d from either"
-        " end) %.4f" % (zSupport*1e3, top*1e3, L*1e3, L/dsv, eps, c0*1e3, c1*1e3, epsCore))
-    if core:
-        say("Core: wall region (within d/2 of a side, %d samples) %.4f, centre (%d samples) %.4f"
-            % (n["wall"], reg["wall"], n["centre"], reg["centre"]))
-    say("Benyahia & O'Neill (2005), spheres at D/d %.3f: %.4f; the bed %+.1f%%, its core %+.1f%%"
-        % (D/dsv, eBO, 100*(eps/eBO - 1), 100*(epsCore/eBO - 1)))
     say()
 
     # The drop at each resolution
@@ -228,8 +249,8 @@ def main():
     say()
     if len(results) >= 2:
         diffs = [(results[i + 1][0], results[i + 1][1] - results[i][1]) for i in range(len(results) - 1)]
-        for c, d in diffs:
-            say("Change to %d cells per diameter: %+.4g Pa/m (%+.1f%%)" % (c, d, 100*d/results[-1][1]))
+        for i, (c, d) in enumerate(diffs):
+            say("Change to %d cells per diameter: %+.4g Pa/m (%+.1f%% of the coarser)" % (c, d, 100*d/results[i][1]))
         mono = all(abs(diffs[i + 1][1]) < abs(diffs[i][1]) for i in range(len(diffs) - 1))
         if len(diffs) >= 2:
             if mono and diffs[-1][1]*diffs[-2][1] > 0:
@@ -253,6 +274,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        import matplotlib.ticker
         fig, ax = plt.subplots(1, 2, figsize=(10, 4))
         ax[0].plot([1 - f for f in phi], [(z - zSupport)*1e3 for z in zs], "k-", lw=0.8)
         ax[0].axvline(eBO, ls="--", color="C1", label="Benyahia & O'Neill (D/d %.2f)" % (D/dsv))
@@ -267,6 +289,7 @@ def main():
         ax[1].set_xscale("log")
         ax[1].set_xticks(cs)
         ax[1].set_xticklabels([str(c) for c in cs])
+        ax[1].xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax[1].set_xlabel("cells per bead diameter")
         ax[1].set_ylabel("dp/L over Eisfeld & Schnitzlein")
         ax[1].legend(fontsize=8)

@@ -175,4 +175,5 @@ def main():
           "diameter, to t %g s: %s" % (len(beads), tLast, speed, H, cells, tEnd, case))
 
 
-main()
+if __name__ == "__main__":
+    main()
