@@ -7,8 +7,8 @@ Every function takes SI units. Sources:
   and with Mehta & Hawley's (1969) wall factor M = 1 + 2 d/(3 D (1-eps))
   on the specific surface.
 - Eisfeld & Schnitzlein (2001), Chem. Eng. Sci. 56, 4321: Ergun's form
-  refitted with the wall, on 2300 measured points of spheres and
-  cylinders in tubes of D/d 1.6-250,
+  refitted with the wall on measured drops of spheres and cylinders
+  (their range: D/d from 1.6, Re 0.01-17,635, porosity 0.33-0.88),
   psi = dp/L d/(rho u^2) = K1 A^2/Re (1-eps)^2/eps^3 + A/B (1-eps)/eps^3,
   Re = rho u d/mu, A = 1 + 2/(3 (D/d)(1-eps)), B = (k1 (d/D)^2 + k2)^2;
   spheres K1 154, k1 1.15, k2 0.87; all shapes together 155, 1.42, 0.83

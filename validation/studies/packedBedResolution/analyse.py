@@ -48,12 +48,11 @@ from immersedDEMCase import caseConstants  # noqa: E402
 STEADY = 0.01      # change of the drop over the last two fifths: the
                    # scatter of a settled run is far below (README.md);
                    # a run still developing shows here
-FINEST_BAND = 0.20  # Eisfeld & Schnitzlein's fit scatters about its
-                    # data by 10-20% at D/d below 10 (their Fig. 6-7 as
-                    # reported by the paper's abstract: wall effects in
-                    # narrow tubes are where the data spread); this is
-                    # one random bed of ~400 beads in a square, not a
-                    # round, tube
+FINEST_BAND = 0.20  # the spread of the correlations themselves here: at
+                    # this bed's porosity, Re and D/d Ergun's drop is 18%
+                    # below Eisfeld & Schnitzlein's (692 against 840
+                    # Pa/m, results.txt); and this is one random bed of
+                    # ~400 beads in a square, not a round, tube
 
 
 def fail(msg):
