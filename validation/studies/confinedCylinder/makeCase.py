@@ -19,6 +19,7 @@ maxCo. Forces: postProcessing/bodies/0/bodies.dat (Ffx, Ffy), with
 rhoInf 1 (the benchmark's density).
 """
 import argparse
+import importlib.util
 import math
 import os
 
@@ -35,6 +36,15 @@ FoamFile
     object      %s;
 }
 """
+
+
+def unsteadyCylinder():
+    """validation/studies/unsteadyCylinder/makeCase.py as a module"""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "unsteadyCylinder", "makeCase.py")
+    spec = importlib.util.spec_from_file_location("unsteadyCylinderCase", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def write(d, rel, cls, body):
@@ -183,19 +193,8 @@ functions
     }
 }
 """ % (a.endTime, 0.1*h/umax, a.maxCo))
-    write(d, "system/fvSchemes", "dictionary", """
-ddtSchemes      { default %s; }
-gradSchemes     { default Gauss linear; }
-divSchemes
-{
-    default         none;
-    div(phi,U)      Gauss linear;
-    div((nuEff*dev2(T(grad(U))))) Gauss linear;
-}
-laplacianSchemes { default Gauss linear corrected; }
-interpolationSchemes { default linear; }
-snGradSchemes   { default corrected; }
-""" % a.ddt)
+    # The schemes of the unbounded cylinder's study (the documented settings)
+    write(d, "system/fvSchemes", "dictionary", unsteadyCylinder().fvSchemes(a))
     write(d, "system/fvSolution", "dictionary", """
 solvers
 {
