@@ -14,7 +14,7 @@ much the largest lift changed from cycle to cycle (settled?).
 Reference (Schäfer, Turek et al. 1996, "Benchmark computations of laminar
 flow around a cylinder", Notes Numer. Fluid Mech. 52, 547, benchmark 2D-2,
 the bounds their contributors' best results fell in): c_D,max 3.22-3.24,
-c_L,max 0.99-1.01, St 0.295-0.305. Deviations are from the middle of each
+c_L,max 0.99-1.01, St 0.295-0.305 (README.md: where they were read). Deviations are from the middle of each
 band. Prints, writes FILE, and plots confinedCylinder.png; reports, does not
 judge (the study's README has the issue's targets).
 """
