@@ -1,5 +1,5 @@
 #!/bin/bash
-# makeCase.sh <dir> <phi> <L> [-n N] [-endTime T] [-seed S]
+# makeCase.sh <dir> <phi> <L> [-n N] [-endTime T] [-seed S] [-shape sphere|cube]
 # A triply periodic box of L diameters (caseTemplates/periodicSphereArray,
 # N cells per diameter, default 8) holding spheres of diameter 1 m and
 # density ratio 2 at volume fraction phi (0: one sphere at the centre), in
@@ -7,17 +7,20 @@
 # number of about 5 for the isolated sphere. Stock pimpleFoam (backward,
 # two outer correctors, maxCo 0.5); the fvOption's default drive holds
 # the mean velocity at zero (the frame of a closed container).
+# -shape cube: cubes of the sphere's volume (side (pi/6)^(1/3) m, random
+# orientations; the single cube face down), the same number at the same phi.
 set -eu
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../../.." && pwd -P)"
 dir="$1"; phi="$2"; L="$3"; shift 3
-n=8; endTime=60; seed=1
+n=8; endTime=60; seed=1; shape=sphere
 while [ $# -gt 0 ]
 do
     case "$1" in
         -n) n="$2"; shift 2 ;;
         -endTime) endTime="$2"; shift 2 ;;
         -seed) seed="$2"; shift 2 ;;
+        -shape) shape="$2"; shift 2 ;;
         *) echo "Unknown option $1" 1>&2; exit 1 ;;
     esac
 done
@@ -46,6 +49,36 @@ FoamFile { version 2.0; format ascii; class uniformDimensionedVectorField; objec
 dimensions [0 1 -2 0 0 0 0];
 value (0 0 -1);
 DICT
+case "$shape" in
+    sphere) body="shape sphere; radius 0.5;" ;;
+    cube)
+        # the cube of the unit sphere's volume, centred on the origin, as
+        # an ASCII STL (12 triangles, outward normals)
+        mkdir -p constant/triSurface
+        python3 - > constant/triSurface/cube.stl <<'PY'
+import math
+h = 0.5*(math.pi/6)**(1.0/3)
+print("solid cube")
+for axis in range(3):
+    for sign in (-1, 1):
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        if sign < 0:
+            u, v = v, u
+        def p(a, b):
+            x = [0.0, 0.0, 0.0]
+            x[axis] = sign*h; x[u] = a*h; x[v] = b*h
+            return x
+        for tri in ((p(-1, -1), p(1, -1), p(1, 1)), (p(-1, -1), p(1, 1), p(-1, 1))):
+            n = [0.0, 0.0, 0.0]; n[axis] = sign
+            print(" facet normal %g %g %g\n  outer loop" % tuple(n))
+            for x in tri:
+                print("   vertex %.12g %.12g %.12g" % tuple(x))
+            print("  endloop\n endfacet")
+print("endsolid cube")
+PY
+        body="shape triangleMesh; file \"cube.stl\"; orientation random;" ;;
+    *) echo "Unknown shape $shape (sphere or cube)" 1>&2; exit 1 ;;
+esac
 if python3 -c "import sys; sys.exit(0 if float('$phi') > 0 else 1)"
 then
     number=$(python3 -c "import math; print(int(round($phi*$L**3/(math.pi/6))))")
@@ -54,7 +87,7 @@ then
     Lr=$(python3 -c "print($L + 0.5)")
     bodies="templates
 {
-    ball { shape sphere; radius 0.5; material glass; density 2; }
+    ball { $body material glass; density 2; }
 }
 insertion
 {
@@ -68,11 +101,12 @@ insertion
 }"
 else
     c=$(python3 -c "print(0.5*$L)")
-    bodies="bodies { s_0 { shape sphere; radius 0.5; material glass; density 2; position ($c $c $c); } }"
+    body="${body/ orientation random;/}"
+    bodies="bodies { s_0 { $body material glass; density 2; position ($c $c $c); } }"
 fi
 cat > constant/immersedDEMProperties <<DICT
 FoamFile { version 2.0; format ascii; class dictionary; object immersedDEMProperties; }
 materials { glass { youngsModulus 1e7; poissonsRatio 0.25; restitution 0.9; friction 0.1; } }
 $bodies
 DICT
-printf 'phi %s\nL %s\ncellsPerDiameter %s\nseed %s\n' "$phi" "$L" "$n" "$seed" > caseParameters
+printf 'phi %s\nL %s\ncellsPerDiameter %s\nseed %s\nshape %s\n' "$phi" "$L" "$n" "$seed" "$shape" > caseParameters
