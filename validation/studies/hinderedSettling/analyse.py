@@ -132,10 +132,12 @@ def main():
               % (phi, nb, u, u/ut, rz, 100*dev, yk, 100*((u/ut)/yk - 1),
                  "%.4f" % (u/utCode) if utCode else "", 100*change,
                  "" if good else " outside %g%%" % (100*a.tolerance)))
+    largeRows = []
     for run in sorted(glob.glob(os.path.join(a.work, "box*-phi*"))):
         # a suspension in a larger box (the box size's effect; not judged)
         L, phi = (float(x) for x in os.path.basename(run)[3:].split("-phi"))
         u, change, nb, tEnd = settling(run)
+        largeRows.append((phi, u/ut, L))
         print("box %g D, phi %g (%d spheres, to %g s): U %.5f m/s, U/U_t %.4f, %s the 5 D box's; change over the window %+.1f%%"
               % (L, phi, nb, tEnd, u, u/ut, "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
     cubeRows = []
@@ -181,13 +183,15 @@ def main():
         ax.plot(f, [kYK*(1 - x)**nYK for x in f], "k--",
                 label="Yin & Koch (2007) simulations: %.2f (1 - phi)^%.1f" % (kYK, nYK))
         ax.plot([r[0] for r in rows], [r[1] for r in rows], "o", label="immersedDEM, spheres (U_t standard drag)")
+        for phi, r, L in largeRows:
+            ax.plot([phi], [r], "^", color="C0", label="immersedDEM, spheres, box of %g D" % L)
         if cubeRows:
             ax.plot([r[0] for r in cubeRows], [r[1] for r in cubeRows], "s",
                     label="immersedDEM, cubes (U_t Haider & Levenspiel)")
         ax.set_xlabel("volume fraction phi")
         ax.set_ylabel("U / U_t")
         ax.set_ylim(0, 1.05)
-        ax.set_title("Hindered settling, Re_t = %.1f, triply periodic box of 5 D, 8 cells per D" % re, fontsize=9)
+        ax.set_title("Hindered settling, Re_t = %.1f, triply periodic boxes of 5 D (and as marked), 8 cells per D" % re, fontsize=9)
         ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(a.plot, dpi=120)
