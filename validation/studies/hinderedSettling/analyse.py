@@ -10,8 +10,9 @@ and box<L>-phi<f> (spheres at fraction f in a box of L diameters).
 For each run the settling velocity U is the mean of -vz over the bodies
 and over the second half of the run, in the frame of zero mean
 volumetric flux that the fvOption's drive holds. Fluid and body
-constants (nu, rhoInf, g, the density, the radius) are read from each
-run's case.
+constants (nu, rhoInf, g, the density, the radius) are read from the
+case of the smallest single-sphere box (every run is made alike by
+makeCase.sh).
 
 The isolated sphere's terminal velocity U_t, two ways:
 - the standard drag curve (Schiller & Naumann 1933:
@@ -62,6 +63,15 @@ def settling(run):
     u = sum(means)/len(means)
     change = (sum(means[half:])/(len(means) - half) - sum(means[:half])/half)/u
     return u, change, len(per[window[0]]), tEnd
+
+
+def blockMeans(run, width=5.0):
+    """The mean of -vz over the bodies in blocks of width seconds."""
+    t = readTable(os.path.join(run, "postProcessing/sphere/0/bodies.dat"))
+    blocks = {}
+    for k in range(len(t)):
+        blocks.setdefault(int(t["time"][k]//width), []).append(-t["vz"][k])
+    return [(width*b, sum(v)/len(v)) for b, v in sorted(blocks.items())]
 
 
 def constants(run):
@@ -132,14 +142,30 @@ def main():
               % (phi, nb, u, u/ut, rz, 100*dev, yk, 100*((u/ut)/yk - 1),
                  "%.4f" % (u/utCode) if utCode else "", 100*change,
                  "" if good else " outside %g%%" % (100*a.tolerance)))
+    if len(rows) >= 2:
+        xs = [math.log(1 - r[0]) for r in rows]
+        ys = [math.log(r[1]) for r in rows]
+        mx, my = sum(xs)/len(xs), sum(ys)/len(ys)
+        nFit = sum((x - mx)*(y - my) for x, y in zip(xs, ys))/sum((x - mx)**2 for x in xs)
+        print("fit of U/U_t = k (1 - phi)^n to the 5 D box's fractions: k %.3f, n %.2f (Yin & Koch %.2f +- %.2f, %.1f +- %.1f)"
+              % (math.exp(my - nFit*mx), nFit, kYK, kErr, nYK, nErr))
+    for phi, _ in rows:
+        v = kYK*(1 - phi)**nYK
+        print("Yin & Koch's k and n at their quoted limits, phi %g: %+.1f%% to %+.1f%% of their fit"
+              % (phi, 100*((kYK - kErr)*(1 - phi)**(nYK + nErr)/v - 1), 100*((kYK + kErr)*(1 - phi)**(nYK - nErr)/v - 1)))
+    for run in sorted(glob.glob(os.path.join(a.work, "phi*")) + glob.glob(os.path.join(a.work, "cubePhi*"))):
+        print("5 s means of -vz [m/s], %s: %s" % (os.path.basename(run),
+              " ".join("%g:%.3f" % m for m in blockMeans(run))))
     largeRows = []
     for run in sorted(glob.glob(os.path.join(a.work, "box*-phi*"))):
         # a suspension in a larger box (the box size's effect; not judged)
         L, phi = (float(x) for x in os.path.basename(run)[3:].split("-phi"))
         u, change, nb, tEnd = settling(run)
         largeRows.append((phi, u/ut, L))
-        print("box %g D, phi %g (%d spheres, to %g s): U %.5f m/s, U/U_t %.4f, %s the 5 D box's; change over the window %+.1f%%"
-              % (L, phi, nb, tEnd, u, u/ut, "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
+        print("box %g D, phi %g (%d spheres, to %g s): U %.5f m/s, U/U_t %.4f (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%),"
+              " %s the 5 D box's; change over the window %+.1f%%"
+              % (L, phi, nb, tEnd, u, u/ut, 100*((u/ut)/(1 - phi)**n - 1), 100*((u/ut)/(kYK*(1 - phi)**nYK) - 1),
+                 "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
     cubeRows = []
     cubeSingle = os.path.join(a.work, "cubeSingle5")
     cubeRuns = sorted(glob.glob(os.path.join(a.work, "cubePhi*")), key=lambda r: float(os.path.basename(r)[7:]))

@@ -61,15 +61,21 @@ def main():
             sys.exit("analyse.py: %g is not one of Zick & Homsy's fractions %s" % (c, sorted(ZICK_HOMSY)))
         ref = ZICK_HOMSY[c]
         errors = []
+        cells = []
         for n in resolutions:
             K, change, cpd, nb = dragCoefficient(os.path.join(a.work, "c%g-n%d" % (c, n)))
             err = K/ref - 1
             errors.append(err)
+            cells.append(cpd)
             steady = abs(change) < 1e-3
             ok = ok and steady
             print("%-6g %-8.2f %-10.4f %-10.4g %+7.2f%% %+8.4f%% %d%s"
                   % (c, cpd, K, ref, 100*err, 100*change, nb, "" if steady else "  NOT STEADY"))
         converging = all(abs(errors[i + 1]) < abs(errors[i]) for i in range(len(errors) - 1))
+        if len(errors) >= 2 and errors[-1] != 0 and errors[-2] != 0:
+            # apparent order from the two finest runs (their actual cells per diameter)
+            order = math.log(abs(errors[-2]/errors[-1]))/math.log(cells[-1]/cells[-2])
+            print("c %g: apparent order of the error from the two finest runs %.2f" % (c, order))
         within = abs(errors[-1]) <= BAND
         ok = ok and converging and within
         print("c %g: %s, finest %+.2f%% %s" % (c, "converging" if converging else "NOT converging",
