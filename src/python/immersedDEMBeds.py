@@ -130,6 +130,15 @@ def terminalVelocity(V, A, rhoP, rhoF, nu, g):
     return bisect(excess, 1e-12, 100.0), d, phi
 
 
+def schillerNaumannTerminalVelocity(nu, densityRatio, g, d):
+    """A sphere's terminal velocity in an unbounded fluid by Schiller &
+    Naumann's standard drag, C_D = 24/Re (1 + 0.15 Re^0.687) (Re < 800)."""
+    def excess(U):
+        re = U*d/nu
+        return 3*math.pi*nu*d*U*(1 + 0.15*re**0.687) - (densityRatio - 1)*g*math.pi/6*d**3
+    return bisect(excess, 1e-12, 100.0)
+
+
 def richardsonZaki(ret, dOverD):
     """Richardson & Zaki's exponent n and the wall factor u_i/u_t."""
     if ret < 0.2:

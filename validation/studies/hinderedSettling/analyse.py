@@ -44,7 +44,7 @@ import argparse, glob, math, os, sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
 from immersedDEMData import readTable  # noqa: E402
 from immersedDEMCase import caseConstants, number  # noqa: E402
-from immersedDEMBeds import garsideAlDibouni, terminalVelocity, bisect  # noqa: E402
+from immersedDEMBeds import garsideAlDibouni, schillerNaumannTerminalVelocity, terminalVelocity  # noqa: E402
 
 YIN_KOCH_RE5 = (0.86, 0.06, 4.0, 0.3)   # k, its error, n, its error at Re_t 5.00
 
@@ -83,14 +83,6 @@ def constants(run):
     return case.nu, case.density(body)/case.rhoFluid, case.gravity, d
 
 
-def schillerNaumann(nu, ratio, g, d):
-    """Terminal velocity of a sphere by the standard drag curve."""
-    def excess(U):
-        re = U*d/nu
-        return 3*math.pi*nu*d*U*(1 + 0.15*re**0.687) - (ratio - 1)*g*math.pi/6*d**3
-    return bisect(excess, 1e-12, 100.0)
-
-
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("work")
@@ -106,7 +98,7 @@ def main():
     if not singles:
         sys.exit("analyse.py: no single-sphere run in %s" % a.work)
     nu, ratio, g, D = constants(os.path.join(a.work, "single%g" % min(singles)))
-    ut = schillerNaumann(nu, ratio, g, D)
+    ut = schillerNaumannTerminalVelocity(nu, ratio, g, D)
     re = ut*D/nu
     n = garsideAlDibouni(re)
     print("isolated sphere, standard drag (Schiller & Naumann): U_t %.5f m/s, Re_t %.2f, Garside & Al-Dibouni n %.3f"
