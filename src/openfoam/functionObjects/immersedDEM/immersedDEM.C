@@ -467,8 +467,11 @@ bool Foam::functionObjects::immersedDEM::execute()
             << fourierDeltaT << " s at which the bodies' viscous Fourier"
             << " number nu deltaT/h^2 is maxFourier " << maxFourier_
             << ": the solver's correctors may not converge the fluid's"
-            << " answer to the bodies, and a free body can be thrown off."
-            << " Reduce deltaT (or use adjustTimeStep, which caps it)" << endl;
+            << " answer to the bodies: a free body can be thrown off, and"
+            << " the flow around a fixed or prescribed one can oscillate and"
+            << " grow from step to step. Reduce deltaT (or use"
+            << " adjustTimeStep, which caps it), or raise the PIMPLE"
+            << " dictionary's nCorrectors" << endl;
         reportedFourier_ = true;
     }
 
@@ -511,8 +514,10 @@ bool Foam::functionObjects::immersedDEM::execute()
 
 Foam::scalar Foam::functionObjects::immersedDEM::fourierStep() const
 {
-    // The largest CFD step at maxFourier over the free bodies in the
-    // mesh (their smallest covered cell, checkBodies)
+    // The largest CFD step at maxFourier over the bodies in the mesh,
+    // free, fixed and prescribed alike (their smallest covered cell,
+    // checkBodies): the forcing of a fixed body needs it as much as the
+    // coupling of a free one
     scalar cap = GREAT;
     if (!(maxFourier_ > 0) || !(nu_ > 0) || !state_.projection().forcingRegistered())
     {
@@ -537,7 +542,7 @@ Foam::scalar Foam::functionObjects::immersedDEM::fourierStep() const
         {
             h = sqrt(h*h*h/depth);
         }
-        if (bodies[i].dynamic() && h > 0)
+        if (!state_.dem().isWall(i) && h > 0)
         {
             cap = min(cap, maxFourier_*h*h/nu_);
         }
