@@ -744,3 +744,57 @@ TEST(lubrication, rockingFacesLoseTheirTiltingWithoutReversingIt)
         EXPECT_GT(E, 0.49*E0) << "dt " << dt;
     }
 }
+
+
+TEST(lubrication, contactFilmCarriedAtRestAsMeasured)
+{
+    // A faceted ball pressed into a cube face, both free, closing slowly
+    // (a bed at rest: the film of a contact is the contact's, its radius
+    // from the two surfaces' curvature near the contact point). Carried
+    // (the default), the curvatures are measured once and carried while
+    // the bodies move less than 5% of the activation distance; measured
+    // every sub-step (reuse off), the same films follow
+    auto run = [](bool carry, demCounters& work)
+    {
+        demSettings s;
+        s.reuseContacts = carry;
+        demSolver dem({contactMaterial{"glass", 1e7, 0.24, 1, 0}}, s);
+        rigidBody ball
+        (
+            "ball",
+            std::make_shared<triangleMeshShape>(primitiveMeshes::icosphere(0.005, 3), "ball"),
+            2500
+        );
+        // 2 um into the face at x = 0, along a line off the vertices
+        ball.pose = at(vec3(-0.005 + 2e-6, 0.0003, 0.0002));
+        ball.velocity = vec3(1e-4, 0, 0);
+        ball.fluidCellSize = 1e-3;
+        const int i = dem.addBody(ball);
+        rigidBody box("box", cube(0.005), 2500);
+        box.pose = at(vec3(0.005, 0, 0));
+        box.fluidCellSize = 1e-3;
+        dem.addBody(box);
+        dem.setFluidViscosity(1e-3);
+        for (int k = 0; k < 150; ++k)
+        {
+            dem.step(1e-6);
+        }
+        work = dem.work();
+        return vec3(dem.bodies()[i].lubricationForce);
+    };
+    demCounters carriedWork, measuredWork;
+    const vec3 carried = run(true, carriedWork);
+    const vec3 measured = run(false, measuredWork);
+    // The contact's film acted at every sub-step, and was carried at most
+    // of them (measured again after reuseMaxSteps, 100)
+    // (one film per contact pass: 150 steps and the loads at the start)
+    EXPECT_GE(carriedWork.lubricatedPairs, 150);
+    EXPECT_GE(carriedWork.reusedFilms, carriedWork.lubricatedPairs - 3);
+    EXPECT_EQ(measuredWork.reusedFilms, 0);
+    ASSERT_GT(measured.norm(), 0);
+    // 1e-9 relative: the bodies move 15 nm relative to each other over
+    // the run, a millionth of the ball's triangles (about 1 mm), and the
+    // faces' curvature is constant on each; what is left is round-off
+    // (the curvature rotated into the body frames and back)
+    EXPECT_NEAR((carried - measured).norm()/measured.norm(), 0, 1e-9);
+}

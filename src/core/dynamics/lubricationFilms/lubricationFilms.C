@@ -149,12 +149,43 @@ void lubricationFilms::lubricate
         const double Rcap = demPair::effectiveRadius(A, isWall[ia], B);
         const vec3& x = best->region.point;
         const vec3& n = best->region.normal;
-        const double R = lubrication::gapRadius
+        // The surfaces' curvatures near the contact point: carried while
+        // the bodies have moved less than a small fraction of the
+        // activation distance (the point they are taken at moves about
+        // as much), measured otherwise
+        const mat3& RA = A.pose.rotation();
+        const mat3& RB = B.pose.rotation();
+        mat3 KA, KB;
+        const auto cf = contactFilms_.find(key);
+        if
         (
-            lubrication::curvatureNear(*A.geometry, A.pose, x),
-            lubrication::curvatureNear(*B.geometry, B.pose, x),
-            n, Rcap
-        );
+            cf != contactFilms_.end()
+         && cf->second.count < maxSteps_
+         && pairFilter::motionBound(cf->second.poseA, A.pose, A.geometry->boundingRadius())
+          + pairFilter::motionBound(cf->second.poseB, B.pose, B.geometry->boundingRadius())
+          < filmCarryFraction*hAct
+        )
+        {
+            ++cf->second.count;
+            ++work.reusedFilms;
+            KA = RA*cf->second.curvatureA*RA.transpose();
+            KB = RB*cf->second.curvatureB*RB.transpose();
+        }
+        else
+        {
+            KA = lubrication::curvatureNear(*A.geometry, A.pose, x);
+            KB = lubrication::curvatureNear(*B.geometry, B.pose, x);
+            if (carryFilms_ && !demPair::analytic(*A.geometry, *B.geometry))
+            {
+                contactFilmRecord& f = contactFilms_[key];
+                f.poseA = A.pose;
+                f.poseB = B.pose;
+                f.curvatureA = RA.transpose()*KA*RA;
+                f.curvatureB = RB.transpose()*KB*RB;
+                f.count = 0;
+            }
+        }
+        const double R = lubrication::gapRadius(KA, KB, n, Rcap);
         applyFilm(bodies, A, B, x, n, 0, R, hAct, ls.roughness*Rcap, dt, load, work);
         return;
     }

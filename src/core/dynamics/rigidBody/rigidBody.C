@@ -72,7 +72,14 @@ mat3 rigidBody::worldInertia() const
 
 double rigidBody::inverseInertiaAlong(const vec3& a) const
 {
-    return dynamic() ? a.dot(worldInertia().inverse()*a) : 0;
+    if (!dynamic())
+    {
+        return 0;
+    }
+    // I^-1 = R diag(1/I_k) R^T: the components of a in the principal axes
+    const vec3 b = pose.rotation().transpose()*a;
+    const vec3& I = inertia();
+    return b.x()*b.x()/I.x() + b.y()*b.y()/I.y() + b.z()*b.z()/I.z();
 }
 
 
