@@ -95,7 +95,7 @@ void lubricationFilms::lubricate
     // have moved, relative to each other, by less than a small fraction
     // of its gap: the gap and the normal follow the material points that
     // were closest (first order in the motion)
-    const std::pair<int, int> key(ia, ib);
+    const std::uint64_t key = pairFilter::key(ia, ib);
     const auto carried = films_.find(key);
     if
     (

@@ -71,6 +71,8 @@ struct workspace
     std::vector<plane> planes;
     std::vector<double> facing;
     std::vector<int> order;
+    //- The vertices of the polyhedron being loaded, placed
+    std::vector<vec3> placed;
 };
 
 
@@ -200,12 +202,18 @@ void loadFaces
     w.current.clear();
     const mat3& R = p.rotation();
     const vec3 t = p.position() - o;
+    // Each vertex placed once (it is a corner of three faces or more)
+    w.placed.resize(poly.vertices().size());
+    for (size_t k = 0; k < w.placed.size(); ++k)
+    {
+        w.placed[k] = R*poly.vertices()[k] + t;
+    }
     for (const convexPolyhedron::face& f : poly.faces())
     {
         const int start = int(w.current.points.size());
         for (int k : f.corners)
         {
-            w.current.points.push_back(R*poly.vertices()[k] + t);
+            w.current.points.push_back(w.placed[k]);
             w.current.rim.push_back(0);
         }
         w.current.polygons.push_back({start, int(f.corners.size()), fromA});

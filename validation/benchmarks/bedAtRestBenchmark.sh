@@ -1,0 +1,103 @@
+#!/bin/bash
+# A settled bed's cost per CFD step, two libraries side by side.
+#
+#   validation/benchmarks/bedAtRestBenchmark.sh -case DIR -time T [-steps N] \
+#       -libA DIR -libB DIR [-work DIR]
+#
+# Copies the time folder T of a finished case (DIR: a packedBed run, e.g.
+# `./Allrun -full -fine` run to its end; T a written time with the bed at
+# rest, e.g. its last) twice, and runs pimpleFoam from T for about N CFD
+# steps (default 25) in both copies at once: one with libimmersedDEM.so
+# from -libA, one from -libB (each a folder holding the library; build the
+# one to compare with from another commit and copy its .build/lib). The
+# two runs share the machine alike (2 cores), so their ratios hold where
+# their absolute times do not.
+#
+# Prints, per library, the function object's summary (wall-clock seconds
+# per part) and work line (contacts evaluated and carried, films and
+# films carried), then the ratios B/A of the plugin's seconds, of each of
+# its parts, and of the wall time per simulated second. Exits 1 if either
+# run fails, or if the two runs' bodies end more than 1e-6 of a pellet
+# size apart (a check that B is the same physics, not a faster other one).
+set -u
+here="$(cd "$(dirname "$0")" && pwd -P)"
+project="$(cd "$here/../.." && pwd -P)"
+case_= time_= libA= libB= steps=25 work=/tmp/immersedDEM-benchmark-bedAtRest
+while [ $# -gt 0 ]
+do
+    case "$1" in
+        -case|-time|-steps|-libA|-libB|-work)
+            [ $# -ge 2 ] || { echo "$1 needs a value" 1>&2; exit 1; }
+            case "$1" in
+                -case) case_="$2" ;; -time) time_="$2" ;; -steps) steps="$2" ;;
+                -libA) libA="$2" ;; -libB) libB="$2" ;; -work) work="$2" ;;
+            esac
+            shift 2 ;;
+        *) echo "Unknown option $1 (see the header of $0)" 1>&2; exit 1 ;;
+    esac
+done
+for v in case_ time_ libA libB
+do
+    [ -n "${!v}" ] || { echo "-${v%_} is required (see the header of $0)" 1>&2; exit 1; }
+done
+[ -d "$case_/$time_" ] || { echo "No time folder $time_ in $case_" 1>&2; exit 1; }
+for l in "$libA" "$libB"
+do
+    [ -f "$l/libimmersedDEM.so" ] || { echo "No libimmersedDEM.so in $l" 1>&2; exit 1; }
+done
+. "$project/src/etc/bashrc"
+libA="$(cd "$libA" && pwd -P)"; libB="$(cd "$libB" && pwd -P)"
+rm -rf "$work"; mkdir -p "$work"
+# The CFD step at T, from the solver's last time folder's uniform/time
+dt=$(sed -n 's/^deltaT[ \t]\+\([^;]*\);/\1/p' "$case_/$time_/uniform/time")
+end=$(/usr/bin/python3 -c "print('%.6g' % ($time_ + ($steps + 0.5)*$dt))")
+for v in A B
+do
+    mkdir "$work/$v"
+    cp -r "$case_/$time_" "$case_/constant" "$case_/system" "$work/$v/"
+    (cd "$work/$v" && foamDictionary -entry endTime -set "$end" system/controlDict > /dev/null)
+done
+echo "From t = $time_ to $end (deltaT $dt), A: $libA, B: $libB"
+lib=("$libA" "$libB"); i=0
+for v in A B
+do
+    (cd "$work/$v" && LD_LIBRARY_PATH="${lib[$i]}:$LD_LIBRARY_PATH" pimpleFoam > log.pimpleFoam 2>&1) &
+    i=$((i + 1))
+done
+wait
+/usr/bin/python3 - "$work" <<'PY'
+import glob, os, re, sys
+work = sys.argv[1]
+runs = {}
+for v in "AB":
+    log = open(os.path.join(work, v, "log.pimpleFoam")).read()
+    if not re.search(r"^End\s*$", log, re.M):
+        print("run %s did not end: %s" % (v, os.path.join(work, v, "log.pimpleFoam")))
+        sys.exit(1)
+    summary = log[log.rindex("Summary (wall-clock seconds"):]
+    parts = {}
+    for m in re.finditer(r"^\s{4}(\S.*?)\s{2,}([0-9.]+)\s+([0-9.]+)%$", summary, re.M):
+        parts[m.group(1)] = float(m.group(2))
+    per = float(re.search(r"(\d+) wall s per simulated s", summary).group(1))
+    work_line = re.findall(r"contacts evaluated .*", log)[-1]
+    print("== %s" % v)
+    print(summary[:summary.index("largest overlap")].rstrip())
+    print("   " + work_line)
+    runs[v] = (parts, per)
+A, B = runs["A"], runs["B"]
+print("\nB/A:")
+for k in A[0]:
+    if k in B[0] and A[0][k] > 0.05:
+        print("  %-40s %7.3f s -> %7.3f s  %.3f" % (k, A[0][k], B[0][k], B[0][k]/A[0][k]))
+print("  %-40s %7d -> %7d    %.3f" % ("wall s per simulated s", A[1], B[1], B[1]/A[1]))
+# The same physics: the bodies' positions at the end
+def last_positions(v):
+    f = glob.glob(os.path.join(work, v, "postProcessing", "*", "*", "bodies.dat"))
+    rows = [l.split() for l in open(f[0]) if l.strip() and not l.startswith("#")]
+    t = rows[-1][0]
+    return [tuple(map(float, r[2:5])) for r in rows if r[0] == t]
+pa, pb = last_positions("A"), last_positions("B")
+d = max(max(abs(a - b) for a, b in zip(x, y)) for x, y in zip(pa, pb))
+print("  largest difference in a body's position at the end: %.3g m" % d)
+sys.exit(0 if len(pa) == len(pb) and d < 3e-9 else 1)
+PY
