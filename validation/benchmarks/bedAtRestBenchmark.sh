@@ -17,8 +17,9 @@
 # per part) and work line (contacts evaluated and carried, films and
 # films carried), then the ratios B/A of the plugin's seconds, of each of
 # its parts, and of the wall time per simulated second. Exits 1 if either
-# run fails, or if the two runs' bodies end more than 1e-6 of a pellet
-# size apart (a check that B is the same physics, not a faster other one).
+# run fails, or if the two runs' bodies end further apart than 5% of the
+# most a body moved in the window (or 3e-9 m, for a bed at rest): a check
+# that B is the same physics, not a faster other one.
 set -u
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../.." && pwd -P)"
@@ -78,7 +79,7 @@ for v in "AB":
     parts = {}
     for m in re.finditer(r"^\s{4}(\S.*?)\s{2,}([0-9.]+)\s+([0-9.]+)%$", summary, re.M):
         parts[m.group(1)] = float(m.group(2))
-    per = float(re.search(r"(\d+) wall s per simulated s", summary).group(1))
+    per = float(re.search(r"([0-9.e+]+) wall s per simulated s", summary).group(1))
     work_line = re.findall(r"contacts evaluated .*", log)[-1]
     print("== %s" % v)
     print(summary[:summary.index("largest overlap")].rstrip())
@@ -89,15 +90,24 @@ print("\nB/A:")
 for k in A[0]:
     if k in B[0] and A[0][k] > 0.05:
         print("  %-40s %7.3f s -> %7.3f s  %.3f" % (k, A[0][k], B[0][k], B[0][k]/A[0][k]))
-print("  %-40s %7d -> %7d    %.3f" % ("wall s per simulated s", A[1], B[1], B[1]/A[1]))
-# The same physics: the bodies' positions at the end
-def last_positions(v):
+print("  %-40s %7.1f -> %7.1f    %.3f" % ("wall s per simulated s", A[1], B[1], B[1]/A[1]))
+# The same physics: the bodies' positions at the end, against how far
+# they moved in the window. Round-off differences (an order of operations)
+# grow where bodies move; a bed at rest keeps them near 1e-12 m
+def positions(v):
     f = glob.glob(os.path.join(work, v, "postProcessing", "*", "*", "bodies.dat"))
     rows = [l.split() for l in open(f[0]) if l.strip() and not l.startswith("#")]
-    t = rows[-1][0]
-    return [tuple(map(float, r[2:5])) for r in rows if r[0] == t]
-pa, pb = last_positions("A"), last_positions("B")
-d = max(max(abs(a - b) for a, b in zip(x, y)) for x, y in zip(pa, pb))
-print("  largest difference in a body's position at the end: %.3g m" % d)
-sys.exit(0 if len(pa) == len(pb) and d < 3e-9 else 1)
+    first, last = rows[0][0], rows[-1][0]
+    at = lambda t: {r[1]: tuple(map(float, r[2:5])) for r in rows if r[0] == t}
+    return at(first), at(last)
+(a0, a1), (b0, b1) = positions("A"), positions("B")
+far = lambda p, q: max(max(abs(x - y) for x, y in zip(p[k], q[k])) for k in p)
+moved = far(a0, a1)
+d = far(a1, b1) if set(a1) == set(b1) else float("inf")
+print("  bodies' positions at the end differ by %.3g m; the most a body moved: %.3g m" % (d, moved))
+# 5% of the window's largest motion, or 1e-6 of a 3 mm pellet for a bed at
+# rest: above round-off's growth measured in these windows (0.4% in 0.2 s
+# of a bed under flow, 1e-13 m in 0.03 s at rest), below a change of the
+# physics (a body's motion off by a twentieth)
+sys.exit(0 if d <= max(0.05*moved, 3e-9) else 1)
 PY
