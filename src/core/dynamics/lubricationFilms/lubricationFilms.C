@@ -150,20 +150,22 @@ void lubricationFilms::lubricate
         const vec3& x = best->region.point;
         const vec3& n = best->region.normal;
         // The surfaces' curvatures near the contact point: carried while
-        // the bodies have moved less than a small fraction of the
-        // activation distance (the point they are taken at moves about
-        // as much), measured otherwise
+        // the bodies have moved, and the point has moved on A, less than
+        // a small fraction of the activation distance (a pair of several
+        // regions may change its largest), measured otherwise
         const mat3& RA = A.pose.rotation();
         const mat3& RB = B.pose.rotation();
+        const double carryBound = filmCarryFraction*hAct;
         mat3 KA, KB;
         const auto cf = contactFilms_.find(key);
         if
         (
             cf != contactFilms_.end()
          && cf->second.count < maxSteps_
+         && (A.pose.toBody(x) - cf->second.point).norm() < carryBound
          && pairFilter::motionBound(cf->second.poseA, A.pose, A.geometry->boundingRadius())
           + pairFilter::motionBound(cf->second.poseB, B.pose, B.geometry->boundingRadius())
-          < filmCarryFraction*hAct
+          < carryBound
         )
         {
             ++cf->second.count;
@@ -182,6 +184,7 @@ void lubricationFilms::lubricate
                 f.poseB = B.pose;
                 f.curvatureA = RA.transpose()*KA*RA;
                 f.curvatureB = RB.transpose()*KB*RB;
+                f.point = A.pose.toBody(x);
                 f.count = 0;
             }
         }
