@@ -48,6 +48,10 @@ do
 done
 . "$project/src/etc/bashrc"
 libA="$(cd "$libA" && pwd -P)"; libB="$(cd "$libB" && pwd -P)"
+if [ -e "$work" ] && ! [ -f "$work/A/log.pimpleFoam" ]
+then
+    echo "$work exists and is not this benchmark's: give another -work" 1>&2; exit 1
+fi
 rm -rf "$work"; mkdir -p "$work"
 # The CFD step at T, from the solver's last time folder's uniform/time
 dt=$(sed -n 's/^deltaT[ \t]\+\([^;]*\);/\1/p' "$case_/$time_/uniform/time")
@@ -98,12 +102,17 @@ def positions(v):
     f = glob.glob(os.path.join(work, v, "postProcessing", "*", "*", "bodies.dat"))
     rows = [l.split() for l in open(f[0]) if l.strip() and not l.startswith("#")]
     first, last = rows[0][0], rows[-1][0]
-    at = lambda t: {r[1]: tuple(map(float, r[2:5])) for r in rows if r[0] == t}
+    # (the unwrapped positions xu yu zu, the last three columns: a body
+    # crossing a periodic boundary has not moved a period)
+    at = lambda t: {r[1]: tuple(map(float, r[-3:])) for r in rows if r[0] == t}
     return at(first), at(last)
 (a0, a1), (b0, b1) = positions("A"), positions("B")
 far = lambda p, q: max(max(abs(x - y) for x, y in zip(p[k], q[k])) for k in p)
+if not (set(a0) == set(a1) == set(b0) == set(b1)):
+    print("  bodies were inserted or removed in the window: no comparison of positions")
+    sys.exit(1)
 moved = far(a0, a1)
-d = far(a1, b1) if set(a1) == set(b1) else float("inf")
+d = far(a1, b1)
 print("  bodies' positions at the end differ by %.3g m; the most a body moved: %.3g m" % (d, moved))
 # 5% of the window's largest motion, or 1e-6 of a 3 mm pellet for a bed at
 # rest: above round-off's growth measured in these windows (0.4% in 0.2 s
