@@ -50,6 +50,19 @@ void lubricationFilms::beginPass
 }
 
 
+bool lubricationFilms::movedLess
+(
+    const bodyPose& a0, const rigidBody& A,
+    const bodyPose& b0, const rigidBody& B, double bound
+)
+{
+    return
+        pairFilter::motionBound(a0, A.pose, A.geometry->boundingRadius())
+      + pairFilter::motionBound(b0, B.pose, B.geometry->boundingRadius())
+      < bound;
+}
+
+
 double lubricationFilms::inverseMassAlong
 (
     const rigidBody& b, const vec3& x, const vec3& n, double addedMass
@@ -101,9 +114,11 @@ void lubricationFilms::lubricate
     (
         carried != films_.end()
      && carried->second.count < maxSteps_
-     && pairFilter::motionBound(carried->second.poseA, A.pose, A.geometry->boundingRadius())
-      + pairFilter::motionBound(carried->second.poseB, B.pose, B.geometry->boundingRadius())
-      < filmCarryFraction*carried->second.gap
+     && movedLess
+        (
+            carried->second.poseA, A, carried->second.poseB, B,
+            filmCarryFraction*carried->second.gap
+        )
     )
     {
         filmRecord& f = carried->second;
@@ -156,16 +171,15 @@ void lubricationFilms::lubricate
         const mat3& RA = A.pose.rotation();
         const mat3& RB = B.pose.rotation();
         const double carryBound = filmCarryFraction*hAct;
+        const vec3 xA = A.pose.toBody(x);
         mat3 KA, KB;
         const auto cf = contactFilms_.find(key);
         if
         (
             cf != contactFilms_.end()
          && cf->second.count < maxSteps_
-         && (A.pose.toBody(x) - cf->second.point).norm() < carryBound
-         && pairFilter::motionBound(cf->second.poseA, A.pose, A.geometry->boundingRadius())
-          + pairFilter::motionBound(cf->second.poseB, B.pose, B.geometry->boundingRadius())
-          < carryBound
+         && (xA - cf->second.point).norm() < carryBound
+         && movedLess(cf->second.poseA, A, cf->second.poseB, B, carryBound)
         )
         {
             ++cf->second.count;
@@ -184,7 +198,7 @@ void lubricationFilms::lubricate
                 f.poseB = B.pose;
                 f.curvatureA = RA.transpose()*KA*RA;
                 f.curvatureB = RB.transpose()*KB*RB;
-                f.point = A.pose.toBody(x);
+                f.point = xA;
                 f.count = 0;
             }
         }
