@@ -4,7 +4,8 @@ reference values for benchmark 2D-2.
 
     analyse.py WORK [-cycles 4] [-out FILE] [-noplot]
 
-WORK holds n<CELLS>/ (makeCase.py cases, run). For each: the drag and lift
+WORK holds n<CELLS>/ and n<CELLS>x<SHIFT>/ (makeCase.py cases, run; the
+second with the cylinder moved SHIFT cells downstream). For each: the drag and lift
 coefficients c = 2 F/(rho U^2 D dz) (F the fluid force on the body from
 bodies.dat, Ffx and Ffy; rho 1, U = 1 m/s the mean inflow, D = 0.1 m, dz
 the slab), over the last -cycles whole lift cycles (from upward zero
@@ -20,6 +21,7 @@ judge (the study's README has the issue's targets).
 """
 import glob
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
@@ -77,8 +79,12 @@ def main():
     if len(pos) != 1:
         sys.exit("usage: analyse.py WORK [-cycles N] [-out FILE] [-noplot]")
     work = pos[0]
-    runs = sorted((int(os.path.basename(d)[1:]), d) for d in glob.glob(os.path.join(work, "n*"))
-                  if os.path.basename(d)[1:].isdigit())
+    runs = []
+    for d in glob.glob(os.path.join(work, "n*")):
+        m = re.fullmatch(r"n(\d+)(?:x([0-9.]+))?", os.path.basename(d))
+        if m:
+            runs.append((float(m.group(2) or 0), int(m.group(1)), d))
+    runs.sort()
     lines = []
 
     def say(s=""):
@@ -89,22 +95,22 @@ def main():
         % cycles)
     say("reference bands: c_D,max %.2f-%.2f, c_L,max %.2f-%.2f, St %.3f-%.3f (deviations from their middles)"
         % (REFERENCE["CdMax"] + REFERENCE["ClMax"] + REFERENCE["St"]))
-    say("%-6s %-14s %-9s %-8s %-9s %-8s %-8s %-8s %-9s" % ("cells", "cycles (s)", "c_D,max", "dev", "c_L,max", "dev",
-                                                          "St", "dev", "lift spread"))
+    say("%-6s %-6s %-14s %-9s %-8s %-9s %-8s %-8s %-8s %-9s" % ("cells", "shift", "cycles (s)", "c_D,max", "dev",
+                                                                "c_L,max", "dev", "St", "dev", "lift spread"))
     rows = []
-    for n, case in runs:
+    for sh, n, case in runs:
         try:
             t, cd, cl = history(case)
         except (OSError, ValueError) as e:
-            say("%-6d no force history (%s)" % (n, e))
+            say("%-6d %-6g no force history (%s)" % (n, sh, e))
             continue
         f = figures(t, cd, cl, cycles)
         if f is None:
-            say("%-6d fewer than %d whole lift cycles to t %.3g s" % (n, cycles, t[-1] if t else 0))
+            say("%-6d %-6g fewer than %d whole lift cycles to t %.3g s" % (n, sh, cycles, t[-1] if t else 0))
             continue
-        rows.append((n, f, t, cd, cl))
-        say("%-6d %-14s %-9.4f %-+8.1f %-9.4f %-+8.1f %-8.4f %-+8.1f %-9.2g"
-            % (n, "%.2f-%.2f" % (f["from"], f["to"]), f["CdMax"], 100*(f["CdMax"]/mid["CdMax"] - 1), f["ClMax"],
+        rows.append((n, sh, f, t, cd, cl))
+        say("%-6d %-6g %-14s %-9.4f %-+8.1f %-9.4f %-+8.1f %-8.4f %-+8.1f %-9.2g"
+            % (n, sh, "%.2f-%.2f" % (f["from"], f["to"]), f["CdMax"], 100*(f["CdMax"]/mid["CdMax"] - 1), f["ClMax"],
                100*(f["ClMax"]/mid["ClMax"] - 1), f["St"], 100*(f["St"]/mid["St"] - 1), f["spread"]))
     if out:
         with open(out, "w") as fh:
@@ -114,11 +120,12 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-        for n, f, t, cd, cl in rows:
+        for n, sh, f, t, cd, cl in rows:
             t0 = f["to"] - 2*(f["to"] - f["from"])/f["cycles"]
             sel = [i for i in range(len(t)) if t0 <= t[i] <= f["to"]]
-            ax[0].plot([t[i] - f["to"] for i in sel], [cd[i] for i in sel], label="%d cells/D" % n)
-            ax[1].plot([t[i] - f["to"] for i in sel], [cl[i] for i in sel], label="%d cells/D" % n)
+            lab = "%d cells/D" % n + (", moved %g cell" % sh if sh else "")
+            ax[0].plot([t[i] - f["to"] for i in sel], [cd[i] for i in sel], label=lab)
+            ax[1].plot([t[i] - f["to"] for i in sel], [cl[i] for i in sel], label=lab)
         for a, k, lab in ((ax[0], "CdMax", "c_D"), (ax[1], "ClMax", "c_L")):
             a.axhspan(*REFERENCE[k], color="0.8", label="Schäfer & Turek max")
             a.set_ylabel(lab)
