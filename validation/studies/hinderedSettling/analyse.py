@@ -39,7 +39,7 @@ U over the spheres' U at the same fraction, and over the single cube's
 velocity in the 5 D box against Haider & Levenspiel's drag for the
 cube's sphericity (0.806).
 """
-import argparse, glob, math, os, sys
+import argparse, glob, math, os, re, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "src", "python"))
 from immersedDEMData import readTable  # noqa: E402
@@ -49,14 +49,25 @@ from immersedDEMBeds import garsideAlDibouni, schillerNaumannTerminalVelocity, t
 YIN_KOCH_RE5 = (0.86, 0.06, 4.0, 0.3)   # k, its error, n, its error at Re_t 5.00
 
 
+_tables = {}
+
+
+def bodies(run):
+    """The run's bodies.dat, read once."""
+    if run not in _tables:
+        _tables[run] = readTable(os.path.join(run, "postProcessing/sphere/0/bodies.dat"))
+    return _tables[run]
+
+
 def settling(run):
     """U, its change between the halves of the window, bodies, end time."""
-    t = readTable(os.path.join(run, "postProcessing/sphere/0/bodies.dat"))
-    tEnd = max(t["time"])
+    t = bodies(run)
+    times, vz = t["time"], t["vz"]
+    tEnd = max(times)
     per = {}
-    for k in range(len(t)):
-        if t["time"][k] >= 0.5*tEnd:
-            per.setdefault(t["time"][k], []).append(-t["vz"][k])
+    for time, v in zip(times, vz):
+        if time >= 0.5*tEnd:
+            per.setdefault(time, []).append(-v)
     window = sorted(per)
     means = [sum(per[x])/len(per[x]) for x in window]
     half = len(means)//2
@@ -67,17 +78,144 @@ def settling(run):
 
 def blockMeans(run, width=5.0):
     """The mean of -vz over the bodies in blocks of width seconds."""
-    t = readTable(os.path.join(run, "postProcessing/sphere/0/bodies.dat"))
+    t = bodies(run)
     blocks = {}
-    for k in range(len(t)):
-        blocks.setdefault(int(t["time"][k]//width), []).append(-t["vz"][k])
+    for time, v in zip(t["time"], t["vz"]):
+        blocks.setdefault(int(time//width), []).append(-v)
     return [(width*b, sum(v)/len(v)) for b, v in sorted(blocks.items())]
+
+
+RUN_NAME = re.compile(r"^(?:(?P<single>single)(?P<L>[0-9.]+)|phi(?P<phi>[0-9.]+)|box(?P<box>[0-9.]+)-phi(?P<bphi>[0-9.]+)"
+                      r"|(?P<csingle>cubeSingle)(?P<cL>[0-9.]+)|cubePhi(?P<cphi>[0-9.]+))(?:-s(?P<seed>[0-9]+))?(?:-n(?P<n>[0-9]+))?$")
+
+
+def runs(work):
+    """The runs in work by kind: (kind, phi, box [D], cells per D named or
+    None, path, seed); kind single, spheres, box or cube (phi 0: one
+    cube); seed 1 unless the name ends -s<seed>. Folders of other names
+    are not runs of this study."""
+    found = []
+    for path in sorted(glob.glob(os.path.join(work, "*"))):
+        m = RUN_NAME.match(os.path.basename(path))
+        if not m or not os.path.isdir(path):
+            continue
+        n = int(m.group("n")) if m.group("n") else None
+        seed = int(m.group("seed")) if m.group("seed") else 1
+        if m.group("single"):
+            found.append(("single", 0.0, float(m.group("L")), n, path, seed))
+        elif m.group("phi"):
+            found.append(("spheres", float(m.group("phi")), 5.0, n, path, seed))
+        elif m.group("box"):
+            found.append(("box", float(m.group("bphi")), float(m.group("box")), n, path, seed))
+        elif m.group("csingle"):
+            found.append(("cube", 0.0, float(m.group("cL")), n, path, seed))
+        else:
+            found.append(("cube", float(m.group("cphi")), 5.0, n, path, seed))
+    return found
+
+
+def cellsPerDiameter(run, D):
+    """Cells per diameter of a run: blockMeshDict's N over the box's side."""
+    case = caseConstants(run)
+    lo, hi = case.meshBounds()
+    return int(round(number(case.dictionary("system", "blockMeshDict")["N"])*D/(hi[0] - lo[0])))
+
+
+def linearInInverseBox(sizes):
+    """Least-squares U = U_inf - c D/L through {L: U}: U_inf, c, and the
+    largest residual over U (0 for two boxes)."""
+    xs = [1.0/L for L in sizes]
+    ys = [sizes[L] for L in sizes]
+    mx, my = sum(xs)/len(xs), sum(ys)/len(ys)
+    slope = sum((x - mx)*(y - my) for x, y in zip(xs, ys))/sum((x - mx)**2 for x in xs)
+    uInf = my - slope*mx
+    worst = max(abs(uInf + slope*x - y)/y for x, y in zip(xs, ys))
+    return uInf, -slope, worst
+
+
+def boxSizes(boxes, spheres, ut, n, kYK, nYK):
+    """The suspensions in boxes of several sizes, extrapolated to an
+    unbounded one as U = U_inf - c D/L (the leading finite-size term of a
+    periodic suspension, as Hasimoto's for one sphere; with three boxes
+    or more the residual says whether the points lie on it). Returns
+    {phi: U_inf/U_t}. Printed, not judged."""
+    limits = {}
+    for phi in sorted(boxes):
+        sizes = dict(boxes[phi])
+        if phi in spheres:
+            sizes[5.0] = spheres[phi]
+        if len(sizes) < 2:
+            continue
+        uInf, c, worst = linearInInverseBox(sizes)
+        r = uInf/ut
+        limits[phi] = r
+        print("box-size limit, phi %g, boxes %s D: U_inf %.5f m/s, U_inf/U_t %.4f (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%);"
+              " c %.3f m/s, largest residual %.2f%%%s"
+              % (phi, " ".join("%g" % L for L in sorted(sizes)), uInf, r, 100*(r/(1 - phi)**n - 1),
+                 100*(r/(kYK*(1 - phi)**nYK) - 1), c, 100*worst, "" if len(sizes) > 2 else " (two boxes: no check of the form)"))
+    return limits
+
+
+def observedOrder(hs, us):
+    """Order p and limit of three values us at spacings hs (any ratios),
+    as u = u0 + a h^p; None when the differences change sign."""
+    d1, d2 = us[1] - us[0], us[2] - us[1]
+    if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0):
+        return None
+    def f(p):
+        return (hs[0]**p - hs[1]**p)/(hs[1]**p - hs[2]**p) - d1/d2
+    lo, hi = 0.05, 8.0
+    if f(lo)*f(hi) > 0:
+        return None
+    for _ in range(200):
+        mid = 0.5*(lo + hi)
+        if f(lo)*f(mid) <= 0:
+            hi = mid
+        else:
+            lo = mid
+    p = 0.5*(lo + hi)
+    return p, us[2] - d2*hs[2]**p/(hs[1]**p - hs[2]**p)
+
+
+def resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase):
+    """The runs repeated at other resolutions (names ending -n<N>) beside
+    the base ones. Printed, not judged."""
+    finer = [r for r in found if r[3] is not None and r[0] in ("single", "spheres") and r[2] == 5.0]
+    if not finer:
+        return
+    print()
+    print("| run (box 5 D) | cells per D | U [m/s] | U/U_t | over the %d-cell run | Richardson-Zaki | change over the window |" % nBase)
+    print("|---|---|---|---|---|---|---|")
+    for kind, phi in sorted({(r[0], r[1]) for r in finer}, key=lambda k: k[1]):
+        baseU = singles.get(5.0) if kind == "single" else spheres.get(phi)
+        series = [(nBase, baseU, None)] if baseU is not None else []
+        for _, _, _, _, run, _ in (r for r in finer if (r[0], r[1]) == (kind, phi)):
+            u, change, nb, tEnd = settling(run)
+            series.append((cellsPerDiameter(run, D), u, change))
+        series.sort(key=lambda x: x[0])
+        name = "one sphere" if kind == "single" else "phi %g" % phi
+        for cells, u, change in series:
+            print("| %s | %d | %.5f | %.4f | %s | %s | %s |"
+                  % (name, cells, u, u/ut, "%.4f" % (u/baseU) if baseU else "",
+                     "%.4f" % ((1 - phi)**n) if phi > 0 else "", "%+.1f%%" % (100*change) if change is not None else "(above)"))
+        if len({c for c, _, _ in series}) < len(series):
+            print("  %s: two runs at the same cells per diameter: no extrapolation" % name)
+        elif len(series) >= 3:
+            fit = observedOrder([1.0/c for c, _, _ in series[-3:]], [u for _, u, _ in series[-3:]])
+            if fit:
+                p, uLim = fit
+                print("  %s: observed order %.2f from %s cells; extrapolated U/U_t %.4f%s"
+                      % (name, p, ", ".join("%d" % c for c, _, _ in series[-3:]), uLim/ut,
+                         " (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%)" % (100*((uLim/ut)/(1 - phi)**n - 1),
+                                                                               100*((uLim/ut)/(kYK*(1 - phi)**nYK) - 1)) if phi > 0 else ""))
+            else:
+                print("  %s: the three finest do not converge monotonically: no extrapolation" % name)
 
 
 def constants(run):
     """nu, the density ratio, |g| and the sphere's diameter of a run."""
     case = caseConstants(run)
-    body = readTable(os.path.join(run, "postProcessing/sphere/0/bodies.dat"))["body"][0]
+    body = bodies(run)["body"][0]
     entry = case.bodyEntry(body)
     d = 2*number(entry["radius"]) if "radius" in entry else None
     return case.nu, case.density(body)/case.rhoFluid, case.gravity, d
@@ -89,15 +227,19 @@ def main():
     p.add_argument("-plot")
     p.add_argument("-tolerance", type=float, default=0.05)
     a = p.parse_args()
+    found = runs(a.work)
+    base = [r for r in found if r[3] is None and r[5] == 1]
+    seeded = [r for r in found if r[3] is None and r[0] == "spheres"]
     singles = {}
-    for run in sorted(glob.glob(os.path.join(a.work, "single*"))):
-        L = float(os.path.basename(run)[len("single"):])
+    for _, _, L, _, run, _ in sorted((r for r in base if r[0] == "single"), key=lambda r: r[2]):
         u, change, n, tEnd = settling(run)
         singles[L] = u
         print("one sphere, box %g D: U %.5f m/s (change over the window %+.2f%%, %g s)" % (L, u, 100*change, tEnd))
     if not singles:
         sys.exit("analyse.py: no single-sphere run in %s" % a.work)
-    nu, ratio, g, D = constants(os.path.join(a.work, "single%g" % min(singles)))
+    smallest = [r[4] for r in base if r[0] == "single" and r[2] == min(singles)][0]
+    nu, ratio, g, D = constants(smallest)
+    nBase = cellsPerDiameter(smallest, D)
     ut = schillerNaumannTerminalVelocity(nu, ratio, g, D)
     re = ut*D/nu
     n = garsideAlDibouni(re)
@@ -115,14 +257,25 @@ def main():
               % (L1, L2, utCode, (1 - u2/utCode)/x2, utCode/ut))
     kYK, kErr, nYK, nErr = YIN_KOCH_RE5
     print()
+    print("Spheres in boxes of 5 D, %d cells per diameter:" % nBase)
+    print()
     print("| phi | spheres | U [m/s] | U/U_t | Richardson-Zaki (1-phi)^n | deviation | Yin & Koch k(1-phi)^n | deviation | U/U_t with the code's U_t | change over the window |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     ok = True
     rows = []
     spheres = {}
-    for run in sorted(glob.glob(os.path.join(a.work, "phi*")), key=lambda r: float(os.path.basename(r)[3:])):
-        phi = float(os.path.basename(run)[3:])
-        u, change, nb, tEnd = settling(run)
+    seedLines = []
+    for phi in sorted({r[1] for r in seeded}):
+        # every random start of this fraction: U their mean (independent
+        # samples of the same suspension), the change its mean
+        samples = [(r[5],) + settling(r[4]) for r in sorted((r for r in seeded if r[1] == phi), key=lambda r: r[5])]
+        u = sum(x[1] for x in samples)/len(samples)
+        change = sum(x[2] for x in samples)/len(samples)
+        nb = samples[0][3]
+        if len(samples) > 1:
+            seedLines.append("phi %g, U/U_t of each start (seed: value): %s; mean %.4f, the starts within %.1f%% of it"
+                             % (phi, ", ".join("%d: %.4f" % (x[0], x[1]/ut) for x in samples), u/ut,
+                                100*max(abs(x[1]/u - 1) for x in samples)))
         spheres[phi] = u
         rz = (1 - phi)**n
         yk = kYK*(1 - phi)**nYK
@@ -130,10 +283,12 @@ def main():
         good = abs(dev) <= a.tolerance
         ok = ok and good
         rows.append((phi, u/ut))
-        print("| %g | %d | %.5f | %.4f | %.4f | %+.1f%% | %.4f | %+.1f%% | %s | %+.1f%% |%s"
-              % (phi, nb, u, u/ut, rz, 100*dev, yk, 100*((u/ut)/yk - 1),
+        print("| %g | %s | %.5f | %.4f | %.4f | %+.1f%% | %.4f | %+.1f%% | %s | %+.1f%% |%s"
+              % (phi, "%d" % nb if len(samples) == 1 else "%d, %d starts" % (nb, len(samples)), u, u/ut, rz, 100*dev, yk, 100*((u/ut)/yk - 1),
                  "%.4f" % (u/utCode) if utCode else "", 100*change,
                  "" if good else " outside %g%%" % (100*a.tolerance)))
+    for line in seedLines:
+        print(line)
     if len(rows) >= 2:
         xs = [math.log(1 - r[0]) for r in rows]
         ys = [math.log(r[1]) for r in rows]
@@ -145,22 +300,25 @@ def main():
         v = kYK*(1 - phi)**nYK
         print("Yin & Koch's k and n at their quoted limits, phi %g: %+.1f%% to %+.1f%% of their fit"
               % (phi, 100*((kYK - kErr)*(1 - phi)**(nYK + nErr)/v - 1), 100*((kYK + kErr)*(1 - phi)**(nYK - nErr)/v - 1)))
-    for run in sorted(glob.glob(os.path.join(a.work, "phi*")) + glob.glob(os.path.join(a.work, "cubePhi*"))):
+    for run in [r[4] for r in found if r[0] in ("spheres", "cube") and r[1] > 0]:
         print("5 s means of -vz [m/s], %s: %s" % (os.path.basename(run),
               " ".join("%g:%.3f" % m for m in blockMeans(run))))
     largeRows = []
-    for run in sorted(glob.glob(os.path.join(a.work, "box*-phi*"))):
+    boxes = {}
+    for _, phi, L, _, run, _ in sorted((r for r in base if r[0] == "box"), key=lambda r: (r[1], r[2])):
         # a suspension in a larger box (the box size's effect; not judged)
-        L, phi = (float(x) for x in os.path.basename(run)[3:].split("-phi"))
         u, change, nb, tEnd = settling(run)
+        boxes.setdefault(phi, {})[L] = u
         largeRows.append((phi, u/ut, L))
         print("box %g D, phi %g (%d spheres, to %g s): U %.5f m/s, U/U_t %.4f (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%),"
               " %s the 5 D box's; change over the window %+.1f%%"
               % (L, phi, nb, tEnd, u, u/ut, 100*((u/ut)/(1 - phi)**n - 1), 100*((u/ut)/(kYK*(1 - phi)**nYK) - 1),
                  "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
+    boxLimit = boxSizes(boxes, spheres, ut, n, kYK, nYK)
+    resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase)
     cubeRows = []
     cubeSingle = os.path.join(a.work, "cubeSingle5")
-    cubeRuns = sorted(glob.glob(os.path.join(a.work, "cubePhi*")), key=lambda r: float(os.path.basename(r)[7:]))
+    cubeRuns = [r[4] for r in sorted((r for r in base if r[0] == "cube" and r[1] > 0), key=lambda r: r[1])]
     if cubeRuns or os.path.isdir(cubeSingle):
         print()
         side = (math.pi/6)**(1.0/3)*D
@@ -179,7 +337,7 @@ def main():
         print("|---|---|---|---|---|---|---|")
         nc = garsideAlDibouni(uhl*D/nu)
         for run in cubeRuns:
-            phi = float(os.path.basename(run)[7:])
+            phi = [r[1] for r in found if r[4] == run][0]
             u, change, nb, tEnd = settling(run)
             cubeRows.append((phi, u/uhl))
             # ("<phi> (cubes)": Allvalidate's summary reads the rows that
@@ -203,13 +361,15 @@ def main():
         ax.plot([r[0] for r in rows], [r[1] for r in rows], "o", label="immersedDEM, spheres (U_t standard drag)")
         for phi, r, L in largeRows:
             ax.plot([phi], [r], "^", color="C0", label="immersedDEM, spheres, box of %g D" % L)
+        for phi, r in sorted(boxLimit.items()):
+            ax.plot([phi], [r], "D", color="C3", label="immersedDEM, spheres, boxes extrapolated to an unbounded suspension")
         if cubeRows:
             ax.plot([r[0] for r in cubeRows], [r[1] for r in cubeRows], "s",
                     label="immersedDEM, cubes (U_t Haider & Levenspiel)")
         ax.set_xlabel("volume fraction phi")
         ax.set_ylabel("U / U_t")
         ax.set_ylim(0, 1.05)
-        ax.set_title("Hindered settling, Re_t = %.1f, triply periodic boxes of 5 D (and as marked), 8 cells per D" % re, fontsize=9)
+        ax.set_title("Hindered settling, Re_t = %.1f, triply periodic boxes of 5 D (and as marked), %d cells per D" % (re, nBase), fontsize=9)
         ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(a.plot, dpi=120)
