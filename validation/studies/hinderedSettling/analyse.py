@@ -5,8 +5,11 @@
 
 <work> holds the runs of Allrun: phi<f> (spheres at volume fraction f in a
 periodic box of 5 D), single<L> (one sphere in a box of L diameters),
-and, if run, cubePhi<f> and cubeSingle5 (cubes of the sphere's volume)
-and box<L>-phi<f> (spheres at fraction f in a box of L diameters).
+and, if run, cubePhi<f> and cubeSingle5 (cubes of the sphere's volume),
+box<L>-phi<f> (spheres at fraction f in a box of L diameters),
+phi<f>-s<S> (the 5 D suspension from another random start: its U is
+averaged with phi<f>'s in the main table), phi<f>-n<N> and single5-n<N>
+(at N cells per diameter: the resolution table).
 For each run the settling velocity U is the mean of -vz over the bodies
 and over the second half of the run, in the frame of zero mean
 volumetric flux that the fvOption's drive holds. Fluid and body
@@ -85,8 +88,11 @@ def blockMeans(run, width=5.0):
     return [(width*b, sum(v)/len(v)) for b, v in sorted(blocks.items())]
 
 
-RUN_NAME = re.compile(r"^(?:(?P<single>single)(?P<L>[0-9.]+)|phi(?P<phi>[0-9.]+)|box(?P<box>[0-9.]+)-phi(?P<bphi>[0-9.]+)"
-                      r"|(?P<csingle>cubeSingle)(?P<cL>[0-9.]+)|cubePhi(?P<cphi>[0-9.]+))(?:-s(?P<seed>[0-9]+))?(?:-n(?P<n>[0-9]+))?$")
+NUMBER = r"[0-9]+(?:\.[0-9]+)?"
+RUN_NAME = re.compile(r"^(?:(?P<single>single)(?P<L>{0})(?:-n(?P<sn>[0-9]+))?"
+                      r"|phi(?P<phi>{0})(?:-s(?P<seed>[0-9]+)|-n(?P<n>[0-9]+))?"
+                      r"|box(?P<box>{0})-phi(?P<bphi>{0})"
+                      r"|(?P<csingle>cubeSingle)(?P<cL>{0})|cubePhi(?P<cphi>{0}))$".format(NUMBER))
 
 
 def runs(work):
@@ -99,8 +105,18 @@ def runs(work):
         m = RUN_NAME.match(os.path.basename(path))
         if not m or not os.path.isdir(path):
             continue
-        n = int(m.group("n")) if m.group("n") else None
+        n = m.group("n") or m.group("sn")
+        n = int(n) if n else None
         seed = int(m.group("seed")) if m.group("seed") else 1
+        if m.group("seed") and seed == 1:
+            # seed 1 is the plain name's start: not a second sample
+            print("(%s skipped: seed 1 is the run %s)" % (os.path.basename(path), "phi" + m.group("phi")))
+            continue
+        if not os.path.exists(os.path.join(path, "postProcessing/sphere/0/bodies.dat")):
+            print("(%s skipped: no bodies.dat)" % os.path.basename(path))
+            continue
+        if not finished(path):
+            print("(%s has not reached its end time: analysed to where it is)" % os.path.basename(path))
         if m.group("single"):
             found.append(("single", 0.0, float(m.group("L")), n, path, seed))
         elif m.group("phi"):
@@ -112,6 +128,15 @@ def runs(work):
         else:
             found.append(("cube", float(m.group("cphi")), 5.0, n, path, seed))
     return found
+
+
+def finished(run):
+    """Whether the run's log ends with End (OpenFOAM's last line)."""
+    log = os.path.join(run, "log.pimpleFoam")
+    if not os.path.exists(log):
+        return False
+    with open(log) as f:
+        return any(line.strip() == "End" for line in f)
 
 
 def cellsPerDiameter(run, D):
@@ -138,7 +163,7 @@ def boxSizes(boxes, spheres, ut, n, kYK, nYK):
     unbounded one as U = U_inf - c D/L (the leading finite-size term of a
     periodic suspension, as Hasimoto's for one sphere; with three boxes
     or more the residual says whether the points lie on it). Returns
-    {phi: U_inf/U_t}. Printed, not judged."""
+    {phi: (U_inf/U_t, the number of boxes)}. Printed, not judged."""
     limits = {}
     for phi in sorted(boxes):
         sizes = dict(boxes[phi])
@@ -148,7 +173,7 @@ def boxSizes(boxes, spheres, ut, n, kYK, nYK):
             continue
         uInf, c, worst = linearInInverseBox(sizes)
         r = uInf/ut
-        limits[phi] = r
+        limits[phi] = (r, len(sizes))
         print("box-size limit, phi %g, boxes %s D: U_inf %.5f m/s, U_inf/U_t %.4f (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%);"
               " c %.3f m/s, largest residual %.2f%%%s"
               % (phi, " ".join("%g" % L for L in sorted(sizes)), uInf, r, 100*(r/(1 - phi)**n - 1),
@@ -158,15 +183,15 @@ def boxSizes(boxes, spheres, ut, n, kYK, nYK):
 
 def observedOrder(hs, us):
     """Order p and limit of three values us at spacings hs (any ratios),
-    as u = u0 + a h^p; None when the differences change sign."""
+    as u = u0 + a h^p; a string saying why when there is none."""
     d1, d2 = us[1] - us[0], us[2] - us[1]
     if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0):
-        return None
+        return "differences of opposite sign: not converging monotonically"
     def f(p):
         return (hs[0]**p - hs[1]**p)/(hs[1]**p - hs[2]**p) - d1/d2
     lo, hi = 0.05, 8.0
     if f(lo)*f(hi) > 0:
-        return None
+        return "order outside [%g, %g]" % (lo, hi)
     for _ in range(200):
         mid = 0.5*(lo + hi)
         if f(lo)*f(mid) <= 0:
@@ -174,12 +199,13 @@ def observedOrder(hs, us):
         else:
             lo = mid
     p = 0.5*(lo + hi)
-    return p, us[2] - d2*hs[2]**p/(hs[1]**p - hs[2]**p)
+    return p, us[2] + d2*hs[2]**p/(hs[1]**p - hs[2]**p)
 
 
-def resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase):
+def resolution(found, firstStart, singles, ut, n, kYK, nYK, D, nBase):
     """The runs repeated at other resolutions (names ending -n<N>) beside
-    the base ones. Printed, not judged."""
+    the base ones (firstStart: the spheres' U of the seed-1 runs, the same
+    start as the finer ones). Printed, not judged."""
     finer = [r for r in found if r[3] is not None and r[0] in ("single", "spheres") and r[2] == 5.0]
     if not finer:
         return
@@ -187,7 +213,7 @@ def resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase):
     print("| run (box 5 D) | cells per D | U [m/s] | U/U_t | over the %d-cell run | Richardson-Zaki | change over the window |" % nBase)
     print("|---|---|---|---|---|---|---|")
     for kind, phi in sorted({(r[0], r[1]) for r in finer}, key=lambda k: k[1]):
-        baseU = singles.get(5.0) if kind == "single" else spheres.get(phi)
+        baseU = singles.get(5.0) if kind == "single" else firstStart.get(phi)
         series = [(nBase, baseU, None)] if baseU is not None else []
         for _, _, _, _, run, _ in (r for r in finer if (r[0], r[1]) == (kind, phi)):
             u, change, nb, tEnd = settling(run)
@@ -202,14 +228,14 @@ def resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase):
             print("  %s: two runs at the same cells per diameter: no extrapolation" % name)
         elif len(series) >= 3:
             fit = observedOrder([1.0/c for c, _, _ in series[-3:]], [u for _, u, _ in series[-3:]])
-            if fit:
+            if not isinstance(fit, str):
                 p, uLim = fit
                 print("  %s: observed order %.2f from %s cells; extrapolated U/U_t %.4f%s"
                       % (name, p, ", ".join("%d" % c for c, _, _ in series[-3:]), uLim/ut,
                          " (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%)" % (100*((uLim/ut)/(1 - phi)**n - 1),
                                                                                100*((uLim/ut)/(kYK*(1 - phi)**nYK) - 1)) if phi > 0 else ""))
             else:
-                print("  %s: the three finest do not converge monotonically: no extrapolation" % name)
+                print("  %s: %s; no extrapolation" % (name, fit))
 
 
 def constants(run):
@@ -265,12 +291,15 @@ def main():
     rows = []
     spheres = {}
     seedLines = []
+    firstStart = {}
     for phi in sorted({r[1] for r in seeded}):
         # every random start of this fraction: U their mean (independent
         # samples of the same suspension), the change its mean
         samples = [(r[5],) + settling(r[4]) for r in sorted((r for r in seeded if r[1] == phi), key=lambda r: r[5])]
         u = sum(x[1] for x in samples)/len(samples)
-        change = sum(x[2] for x in samples)/len(samples)
+        firstStart.update({phi: x[1] for x in samples if x[0] == 1})
+        # the largest change of a start (a mean could cancel them)
+        change = max((x[2] for x in samples), key=abs)
         nb = samples[0][3]
         if len(samples) > 1:
             seedLines.append("phi %g, U/U_t of each start (seed: value): %s; mean %.4f, the starts within %.1f%% of it"
@@ -315,7 +344,7 @@ def main():
               % (L, phi, nb, tEnd, u, u/ut, 100*((u/ut)/(1 - phi)**n - 1), 100*((u/ut)/(kYK*(1 - phi)**nYK) - 1),
                  "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
     boxLimit = boxSizes(boxes, spheres, ut, n, kYK, nYK)
-    resolution(found, spheres, singles, ut, n, kYK, nYK, D, nBase)
+    resolution(found, firstStart, singles, ut, n, kYK, nYK, D, nBase)
     cubeRows = []
     cubeSingle = os.path.join(a.work, "cubeSingle5")
     cubeRuns = [r[4] for r in sorted((r for r in base if r[0] == "cube" and r[1] > 0), key=lambda r: r[1])]
@@ -359,10 +388,14 @@ def main():
         ax.plot(f, [kYK*(1 - x)**nYK for x in f], "k--",
                 label="Yin & Koch (2007) simulations: %.2f (1 - phi)^%.1f" % (kYK, nYK))
         ax.plot([r[0] for r in rows], [r[1] for r in rows], "o", label="immersedDEM, spheres (U_t standard drag)")
-        for phi, r, L in largeRows:
-            ax.plot([phi], [r], "^", color="C0", label="immersedDEM, spheres, box of %g D" % L)
-        for phi, r in sorted(boxLimit.items()):
-            ax.plot([phi], [r], "D", color="C3", label="immersedDEM, spheres, boxes extrapolated to an unbounded suspension")
+        sizes = sorted({L for _, _, L in largeRows})
+        for i, L in enumerate(sizes):
+            pts = [(phi, r) for phi, r, LL in largeRows if LL == L]
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], "^v<>"[i % 4], color="C%d" % (i + 1),
+                    label="immersedDEM, spheres, box of %g D" % L)
+        if boxLimit:
+            ax.plot(sorted(boxLimit), [boxLimit[phi][0] for phi in sorted(boxLimit)], "D", color="C5",
+                    label="immersedDEM, spheres, U_inf - c D/L through %s boxes" % "/".join(sorted({"%d" % boxLimit[phi][1] for phi in boxLimit})))
         if cubeRows:
             ax.plot([r[0] for r in cubeRows], [r[1] for r in cubeRows], "s",
                     label="immersedDEM, cubes (U_t Haider & Levenspiel)")
