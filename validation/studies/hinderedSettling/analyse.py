@@ -178,6 +178,7 @@ def boxSizes(boxes, spheres, ut, n, kYK, nYK):
               " c %.3f m/s, largest residual %.2f%%%s"
               % (phi, " ".join("%g" % L for L in sorted(sizes)), uInf, r, 100*(r/(1 - phi)**n - 1),
                  100*(r/(kYK*(1 - phi)**nYK) - 1), c, 100*worst, "" if len(sizes) > 2 else " (two boxes: no check of the form)"))
+        print("  (printed, not judged: %s Richardson & Zaki's 5%% band)" % ("within" if abs(r/(1 - phi)**n - 1) <= 0.05 else "outside"))
     return limits
 
 
@@ -397,7 +398,7 @@ def main():
             ax.plot(sorted(boxLimit), [boxLimit[phi][0] for phi in sorted(boxLimit)], "D", color="C5",
                     label="immersedDEM, spheres, U_inf - c D/L through %s boxes" % "/".join(sorted({"%d" % boxLimit[phi][1] for phi in boxLimit})))
         if cubeRows:
-            ax.plot([r[0] for r in cubeRows], [r[1] for r in cubeRows], "s",
+            ax.plot([r[0] for r in cubeRows], [r[1] for r in cubeRows], "s", color="C7",
                     label="immersedDEM, cubes (U_t Haider & Levenspiel)")
         ax.set_xlabel("volume fraction phi")
         ax.set_ylabel("U / U_t")
