@@ -295,7 +295,7 @@ def main():
     firstStart = {}
     for phi in sorted({r[1] for r in seeded}):
         # every random start of this fraction: U their mean (independent
-        # samples of the same suspension), the change its mean
+        # samples of the same suspension)
         samples = [(r[5],) + settling(r[4]) for r in sorted((r for r in seeded if r[1] == phi), key=lambda r: r[5])]
         u = sum(x[1] for x in samples)/len(samples)
         firstStart.update({phi: x[1] for x in samples if x[0] == 1})
