@@ -138,7 +138,7 @@ TEST(surfaceCurvature, virtualMeshLeavesLoseTheTangentPlaneExcess)
     const sphereShape s(R);
     const flatShape sFlat(s);
     const double lens = sphereOverlap::lens(c1, R, c2, R).volume();
-    const double v = virtualMeshOverlap().evaluate(s, p1, s, p2, coarse).volume();
+    const double v = virtualMeshOverlap().evaluate(s, p1, s, p2, test::octree(h, 2)).volume();
     const double vFlat = virtualMeshOverlap().evaluate(sFlat, p1, sFlat, p2, coarse).volume();
     std::cout << "sphere lens at level 2: flat " << 100*(vFlat/lens - 1)
               << "%, curved " << 100*(v/lens - 1) << "%" << std::endl;

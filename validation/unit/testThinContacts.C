@@ -239,14 +239,14 @@ TEST(thinContacts, tooFineACellSizeIsAnError)
     const auto t0 = std::chrono::steady_clock::now();
     EXPECT_TRUE(test::throwsCoreError
     (
-        [&]{ virtualMeshOverlap().evaluate(s, pA, s, pB, {1e-6, 4}); },
+        [&]{ virtualMeshOverlap().evaluate(s, pA, s, pB, test::octree(1e-6, 4)); },
         {"cellSize", "level", "cells", "limit"}
     ));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_LT(seconds, 30);     // "quickly": a hang would be hours
     // The default resolution is far below the limit
-    const auto g = virtualMeshOverlap().evaluate(s, pA, s, pB, {0.0005, 4});
+    const auto g = virtualMeshOverlap().evaluate(s, pA, s, pB, test::octree(0.0005, 4));
     EXPECT_EQ(g.regions.size(), 1u);
     EXPECT_LT(g.leaves, overlapSettings().maxCells/20);   // "far below": a twentieth
 }

@@ -17,6 +17,7 @@ Description
 #include "triangleMeshShape.H"
 #include "primitiveMeshes.H"
 #include "coreError.H"
+#include "testHelpers.H"
 
 #include <gtest/gtest.h>
 
@@ -174,7 +175,7 @@ TEST(uniformCellsOverlap, virtualMeshNeedsAtMostOneTwentiethOfTheQueries)
     const sphereShape s(R);
     const bodyPose p1(p.c1, quat::Identity()), p2(p.c2, quat::Identity());
     const auto u = uniformOverlap().evaluate(s, p1, s, p2, {h, 4});
-    const auto v = virtualMeshOverlap().evaluate(s, p1, s, p2, {h, 4});
+    const auto v = virtualMeshOverlap().evaluate(s, p1, s, p2, test::octree(h, 4));
     std::cout << "    2% pair, L=4: uniform " << u.queries << " queries, virtualMesh "
         << v.queries << " (ratio " << double(u.queries)/v.queries << ")\n";
     EXPECT_LE(20*v.queries, u.queries)

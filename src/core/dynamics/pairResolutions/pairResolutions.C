@@ -81,8 +81,11 @@ void pairResolutions::update
             const shape& sb = *B.geometry;
 
             // Exact paths need no resolution: convex bodies, and bodies
-            // of convex pieces, against each other and walls
+            // of convex pieces, against each other and walls; two spheres
+            // (the lens)
             const auto* mb = shapeAs<triangleMeshShape>(sb);
+            const bool spheres =
+                sa.shapeKind() == shape::kind::sphere && sb.shapeKind() == shape::kind::sphere;
             if (wall)
             {
                 if (mb && (mb->convex() || (base.convexExact && !mb->pieces().empty()))) continue;
@@ -90,7 +93,7 @@ void pairResolutions::update
             else if
             (
                 base.convexExact
-             && (convexOverlap::handles(sa, sb) || pieceOverlap::handles(sa, sb))
+             && (spheres || convexOverlap::handles(sa, sb) || pieceOverlap::handles(sa, sb))
             )
             {
                 continue;

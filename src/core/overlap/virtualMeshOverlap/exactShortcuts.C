@@ -84,6 +84,23 @@ bool exactShortcuts::answer
         }
     }
 
+    // Two spheres, or a sphere and a plane: the analytic lens or cap (a
+    // suspension in a periodic box, where the DEM's sphere sweep does not
+    // take the pairs, would otherwise refine every lens to d/320)
+    {
+        const shape::kind ka = A.shapeKind(), kb = B.shapeKind();
+        const bool sa = ka == shape::kind::sphere, sb = kb == shape::kind::sphere;
+        if
+        (
+            settings.convexExact
+         && ((sa && sb) || (sa && kb == shape::kind::halfSpace) || (sb && ka == shape::kind::halfSpace))
+        )
+        {
+            g = sphereOverlap().evaluate(A, pA, B, pB, settings);
+            return true;
+        }
+    }
+
     // Bodies made of convex pieces: the sum of their pieces' exact
     // overlaps, each pair of pieces measured here (the convex routes below)
     if (settings.convexExact && pieceOverlap::handles(A, B))
