@@ -6,7 +6,8 @@
 #
 # Copies the time folder T of a finished case (DIR: a packedBed run, e.g.
 # `./Allrun -full -fine` run to its end; T a written time with the bed at
-# rest, e.g. its last) twice, and runs pimpleFoam from T for about N CFD
+# rest, e.g. its last; or any other case, such as a periodic suspension)
+# twice, and runs pimpleFoam from T for about N CFD
 # steps (default 25) in both copies at once: one with libimmersedDEM.so
 # from -libA, one from -libB (each a folder holding the library; build the
 # one to compare with from another commit and copy its .build/lib). The
@@ -56,11 +57,20 @@ rm -rf "$work"; mkdir -p "$work"
 # The CFD step at T, from the solver's last time folder's uniform/time
 dt=$(sed -n 's/^deltaT[ \t]\+\([^;]*\);/\1/p' "$case_/$time_/uniform/time")
 end=$(/usr/bin/python3 -c "print('%.6g' % ($time_ + ($steps + 0.5)*$dt))")
+digits=$(/usr/bin/python3 -c "import re; print(max(6, len(re.sub(r'[^0-9]', '', '$time_').lstrip('0'))))")
 for v in A B
 do
     mkdir "$work/$v"
     cp -r "$case_/$time_" "$case_/constant" "$case_/system" "$work/$v/"
-    (cd "$work/$v" && foamDictionary -entry endTime -set "$end" system/controlDict > /dev/null)
+    # from T (a case started from 0 reads its startTime otherwise), with
+    # enough digits in the time names to read T's folder (the solver may
+    # have raised timePrecision during the run)
+    (
+        cd "$work/$v" \
+     && foamDictionary -entry endTime -set "$end" system/controlDict > /dev/null \
+     && foamDictionary -entry startFrom -set latestTime system/controlDict > /dev/null \
+     && foamDictionary -entry timePrecision -set "$digits" system/controlDict > /dev/null
+    )
 done
 echo "From t = $time_ to $end (deltaT $dt), A: $libA, B: $libB"
 lib=("$libA" "$libB"); i=0
