@@ -6,7 +6,8 @@
 <work> holds the runs of Allrun: phi<f> (spheres at volume fraction f in a
 periodic box of 5 D), single<L> (one sphere in a box of L diameters),
 and, if run, cubePhi<f> and cubeSingle5 (cubes of the sphere's volume),
-box<L>-phi<f> (spheres at fraction f in a box of L diameters),
+box<L>-phi<f>[-s<S>] (spheres at fraction f in a box of L diameters,
+from insertion seed S, default 1),
 phi<f>-s<S> (the 5 D suspension from another random start: its U is
 averaged with phi<f>'s in the main table), phi<f>-n<N> and single5-n<N>
 (at N cells per diameter: the resolution table).
@@ -91,7 +92,7 @@ def blockMeans(run, width=5.0):
 NUMBER = r"[0-9]+(?:\.[0-9]+)?"
 RUN_NAME = re.compile(r"^(?:(?P<single>single)(?P<L>{0})(?:-n(?P<sn>[0-9]+))?"
                       r"|phi(?P<phi>{0})(?:-s(?P<seed>[0-9]+)|-n(?P<n>[0-9]+))?"
-                      r"|box(?P<box>{0})-phi(?P<bphi>{0})"
+                      r"|box(?P<box>{0})-phi(?P<bphi>{0})(?:-s(?P<bseed>[0-9]+))?"
                       r"|(?P<csingle>cubeSingle)(?P<cL>{0})|cubePhi(?P<cphi>{0}))$".format(NUMBER))
 
 
@@ -107,10 +108,11 @@ def runs(work):
             continue
         n = m.group("n") or m.group("sn")
         n = int(n) if n else None
-        seed = int(m.group("seed")) if m.group("seed") else 1
-        if m.group("seed") and seed == 1:
+        named = m.group("seed") or m.group("bseed")
+        seed = int(named) if named else 1
+        if named and seed == 1:
             # seed 1 is the plain name's start: not a second sample
-            print("(%s skipped: seed 1 is the run %s)" % (os.path.basename(path), "phi" + m.group("phi")))
+            print("(%s skipped: seed 1 is the run %s)" % (os.path.basename(path), os.path.basename(path)[:-3]))
             continue
         if not os.path.exists(os.path.join(path, "postProcessing/sphere/0/bodies.dat")):
             print("(%s skipped: no bodies.dat)" % os.path.basename(path))
@@ -335,15 +337,26 @@ def main():
               " ".join("%g:%.3f" % m for m in blockMeans(run))))
     largeRows = []
     boxes = {}
-    for _, phi, L, _, run, _ in sorted((r for r in base if r[0] == "box"), key=lambda r: (r[1], r[2])):
-        # a suspension in a larger box (the box size's effect; not judged)
-        u, change, nb, tEnd = settling(run)
+    boxRuns = {}
+    for _, phi, L, _, run, seed in (r for r in found if r[0] == "box" and r[3] is None):
+        boxRuns.setdefault((phi, L), []).append((seed, run))
+    for phi, L in sorted(boxRuns):
+        # a suspension in a larger box (the box size's effect; not judged);
+        # several starts averaged, as in the 5 D box
+        samples = [(seed,) + settling(run) for seed, run in sorted(boxRuns[(phi, L)])]
+        u = sum(x[1] for x in samples)/len(samples)
+        change = sum(x[2] for x in samples)/len(samples)
+        nb, tEnd = samples[0][3], min(x[4] for x in samples)
         boxes.setdefault(phi, {})[L] = u
         largeRows.append((phi, u/ut, L))
+        starts = "" if len(samples) == 1 else (
+            "; %d starts (seed: U/U_t %s), within %.1f%% of their mean"
+            % (len(samples), ", ".join("%d: %.4f" % (x[0], x[1]/ut) for x in samples),
+               100*max(abs(x[1]/u - 1) for x in samples)))
         print("box %g D, phi %g (%d spheres, to %g s): U %.5f m/s, U/U_t %.4f (Richardson & Zaki %+.1f%%, Yin & Koch %+.1f%%),"
-              " %s the 5 D box's; change over the window %+.1f%%"
+              " %s the 5 D box's; change over the window %+.1f%%%s"
               % (L, phi, nb, tEnd, u, u/ut, 100*((u/ut)/(1 - phi)**n - 1), 100*((u/ut)/(kYK*(1 - phi)**nYK) - 1),
-                 "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change))
+                 "%.4f of" % (u/spheres[phi]) if phi in spheres else "no run in", 100*change, starts))
     boxLimit = boxSizes(boxes, spheres, ut, n, kYK, nYK)
     resolution(found, firstStart, singles, ut, n, kYK, nYK, D, nBase)
     cubeRows = []
