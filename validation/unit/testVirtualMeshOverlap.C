@@ -1,5 +1,6 @@
 // The virtual mesh (virtualMeshOverlap) against analytic lenses and exact
-// volumes (its octree: two spheres otherwise take the lens itself): accuracy, cost growth, pose invariance, regions, errors.
+// volumes (its octree: two spheres otherwise take the lens itself):
+// accuracy, cost growth, pose invariance, regions, errors.
 
 #include "overlapEngine.H"
 #include "sphereOverlap.H"

@@ -1,6 +1,7 @@
 #include "pairResolutions.H"
 #include "convexOverlap.H"
 #include "pieceOverlap.H"
+#include "sphereOverlap.H"
 #include "triangleMeshShape.H"
 
 #include <algorithm>
@@ -84,8 +85,6 @@ void pairResolutions::update
             // of convex pieces, against each other and walls; two spheres
             // (the lens)
             const auto* mb = shapeAs<triangleMeshShape>(sb);
-            const bool spheres =
-                sa.shapeKind() == shape::kind::sphere && sb.shapeKind() == shape::kind::sphere;
             if (wall)
             {
                 if (mb && (mb->convex() || (base.convexExact && !mb->pieces().empty()))) continue;
@@ -93,7 +92,7 @@ void pairResolutions::update
             else if
             (
                 base.convexExact
-             && (spheres || convexOverlap::handles(sa, sb) || pieceOverlap::handles(sa, sb))
+             && (sphereOverlap::handles(sa, sb) || convexOverlap::handles(sa, sb) || pieceOverlap::handles(sa, sb))
             )
             {
                 continue;

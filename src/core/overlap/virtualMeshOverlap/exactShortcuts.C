@@ -87,18 +87,10 @@ bool exactShortcuts::answer
     // Two spheres, or a sphere and a plane: the analytic lens or cap (a
     // suspension in a periodic box, where the DEM's sphere sweep does not
     // take the pairs, would otherwise refine every lens to d/320)
+    if (settings.convexExact && sphereOverlap::handles(A, B))
     {
-        const shape::kind ka = A.shapeKind(), kb = B.shapeKind();
-        const bool sa = ka == shape::kind::sphere, sb = kb == shape::kind::sphere;
-        if
-        (
-            settings.convexExact
-         && ((sa && sb) || (sa && kb == shape::kind::halfSpace) || (sb && ka == shape::kind::halfSpace))
-        )
-        {
-            g = sphereOverlap().evaluate(A, pA, B, pB, settings);
-            return true;
-        }
+        g = sphereOverlap().evaluate(A, pA, B, pB, settings);
+        return true;
     }
 
     // Bodies made of convex pieces: the sum of their pieces' exact
