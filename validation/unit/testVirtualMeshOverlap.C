@@ -8,6 +8,7 @@
 #include "sphereShape.H"
 #include "halfSpaceShape.H"
 #include "triangleMeshShape.H"
+#include "wallMeshShape.H"
 #include "primitiveMeshes.H"
 #include "coreError.H"
 #include "testHelpers.H"
@@ -127,6 +128,101 @@ TEST(virtualMesh, spheresAndPlanesTakeTheAnalyticAnswer)
     EXPECT_LT((gw.regions[0].normal - n).norm(), 1e-12);     // from A, the plane, to B
     EXPECT_LT((gs.regions[0].normal + n).norm(), 1e-12);
     EXPECT_EQ(gw.queries + gs.queries, 0);
+}
+
+
+TEST(virtualMesh, sphereInATanksCornerTakesOneCapPerWall)
+{
+    // An open box tank 100 mm wide of 10 mm squares (a blockMesh patch),
+    // a sphere of radius 5 mm in its corner: the floor and two sides
+    // within its reach, so no flat wall; a new user's spheres there cost
+    // 97% of the run on the octree at d/320. Where the caps behind the
+    // planes are apart, their sum is the overlap with the wall's solid,
+    // exactly and without a query
+    const wallMeshShape tank(primitiveMeshes::openBox(vec3(0, 0, 0), vec3(0.1, 0.1, 0.1), 10), "tank", 0.02);
+    const bodyPose wall;
+    const sphereShape s(R);
+    const overlapSettings exact{0.0005, 4};
+    // The octree on the same pairs, finer: leaves of h/32 = 16 um on caps
+    // 0.4-0.8 mm deep
+    const overlapSettings octree = test::octree(0.0005, 5);
+
+    struct corner
+    {
+        vec3 centre;
+        size_t caps;
+    };
+    // Three walls crossed (0.4, 0.6 and 0.8 mm in), two (a side and the
+    // floor, away from the corner), and one (the floor near the sides,
+    // which do not reach the sphere: the flat wall's cap)
+    for
+    (
+        const corner& k :
+        {
+            corner{vec3(R - 0.0004, R - 0.0006, R - 0.0008), 3},
+            corner{vec3(0.05, R - 0.0006, R - 0.0008), 2},
+            corner{vec3(R + 0.0002, R + 0.0003, R - 0.0008), 1}
+        }
+    )
+    {
+        const bodyPose pS(k.centre, quat::Identity());
+        // The caps by hand: each wall plane through the origin, normal
+        // into the tank
+        double capsVolume = 0;
+        for (int i = 0; i < 3; ++i)
+        {
+            if (k.centre[i] < R)
+            {
+                capsVolume += sphereOverlap::cap(vec3::Zero(), vec3::Unit(i), k.centre, R).volume();
+            }
+        }
+        // (Against the floor alone the flat wall's cap answers whatever
+        // the settings: no octree to compare with)
+        const contactGeometry o = k.caps > 1
+            ? virtualMeshOverlap().evaluate(tank, wall, s, pS, octree)
+            : sphereOverlap::cap(vec3::Zero(), vec3::UnitZ(), k.centre, R);
+        if (k.caps > 1) EXPECT_GT(o.queries, 1000);
+        for (const bool wallFirst : {true, false})
+        {
+            const contactGeometry g = wallFirst
+                ? virtualMeshOverlap().evaluate(tank, wall, s, pS, exact)
+                : virtualMeshOverlap().evaluate(s, pS, tank, wall, exact);
+            ASSERT_EQ(g.regions.size(), k.caps);
+            EXPECT_EQ(g.queries, 0);
+            // The same arithmetic as the caps by hand: equal to rounding
+            EXPECT_NEAR(g.volume()/capsVolume, 1, 1e-12);
+            // The octree's volume: within 1%, its accuracy at this level
+            // (the sphere-sphere lens at level 4 is within 0.5%, above)
+            EXPECT_NEAR(o.volume()/capsVolume, 1, 0.01);
+            // Each region along its wall's normal, from the first body
+            // into the second: into the tank for the wall first
+            for (const contactRegion& r : g.regions)
+            {
+                EXPECT_GT(r.normal.cwiseAbs().maxCoeff(), 1 - 1e-12);
+                EXPECT_GT((wallFirst ? 1 : -1)*r.normal.sum(), 0);
+            }
+        }
+    }
+
+    // Off the floor, pressed 2.5 mm into both sides of a vertical edge:
+    // the region behind both sides is 2.5 sqrt(2) = 3.5 mm from the
+    // centre, inside the sphere, so the two caps share a part (4.8% of
+    // their sum by Monte Carlo, above the octree's 1%) and their sum is
+    // not the overlap: the octree's, with queries
+    const bodyPose pressed(vec3(R - 0.0025, R - 0.0025, 0.05), quat::Identity());
+    const contactGeometry g = virtualMeshOverlap().evaluate(tank, wall, s, pressed, exact);
+    EXPECT_GT(g.queries, 0);
+    const double twoCaps = 2*sphereOverlap::cap(vec3::Zero(), vec3::UnitX(), pressed.position(), R).volume();
+    // 0.952 of the sum, give or take the octree's 1%: below 0.98 of it
+    EXPECT_LT(g.volume(), 0.98*twoCaps);
+    EXPECT_GT(g.volume(), 0.92*twoCaps);
+    // Far from every wall: no region, no query
+    const contactGeometry none = virtualMeshOverlap().evaluate
+    (
+        tank, wall, s, bodyPose(vec3(0.05, 0.05, 0.05), quat::Identity()), exact
+    );
+    EXPECT_TRUE(none.regions.empty());
+    EXPECT_EQ(none.queries, 0);
 }
 
 

@@ -8,6 +8,9 @@
 #include "sphereShape.H"
 #include "wallMeshShape.H"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace immersedDEM
@@ -54,6 +57,41 @@ bool convexBehindBoth
         }
     }
     return false;
+}
+
+
+// Distance from x to the region behind both planes p and q (where both
+// heights are negative): zero inside it; else the least of the
+// distances to the projections of x onto p, onto q and onto their common
+// line that lie in the region (the nearest point of a convex region is
+// the projection onto the planes active there, and any point of the
+// region is at least that far). Infinite when the region is empty
+// (opposite walls nearer than the two planes' offsets allow)
+double distanceBehindBoth
+(
+    const vec3& x,
+    const wallMeshShape::plane& p,
+    const wallMeshShape::plane& q
+)
+{
+    const double hp = p.normal.dot(x) - p.offset;
+    const double hq = q.normal.dot(x) - q.offset;
+    if (hp <= 0 && hq <= 0) return 0;
+    const double c = p.normal.dot(q.normal);
+    double best = std::numeric_limits<double>::infinity();
+    // Onto p (x - hp n_p, whose height over q is hq - hp c), onto q
+    if (hp > 0 && hq - hp*c <= 0) best = hp;
+    if (hq > 0 && hp - hq*c <= 0) best = std::min(best, hq);
+    // Onto the common line: x - a n_p - b n_q on both planes, a + b c = hp
+    // and a c + b = hq; none for parallel planes
+    const double det = 1 - c*c;
+    if (det > 1e-12)
+    {
+        const double a = (hp - c*hq)/det;
+        const double b = (hq - c*hp)/det;
+        best = std::min(best, std::sqrt(std::max(a*a + b*b + 2*a*b*c, 0.0)));
+    }
+    return best;
 }
 
 } // End anonymous namespace
@@ -243,6 +281,59 @@ bool exactShortcuts::answer
             );
             for (contactRegion& r : g.regions) r.normal = -r.normal;
             return true;
+        }
+        // A sphere in a locally convex fluid region of a wall mesh (a box
+        // tank's corner or edge): one cap per plane it crosses when no two
+        // caps share a point (the sphere's parts behind two planes are
+        // apart iff the region behind both is at least a radius from its
+        // centre); their sum is then its overlap with the wall's solid,
+        // the union of the half-spaces. Caps that meet (a sphere pressed
+        // into a faceted tube) stay the octree's
+        if (settings.convexExact && ((wa && sb) || (sa && wb)))
+        {
+            const bool wallFirst = wa != nullptr;
+            const wallMeshShape& w = wallFirst ? *wa : *wb;
+            const bodyPose& pW = wallFirst ? pA : pB;
+            const bodyPose& pS = wallFirst ? pB : pA;
+            const double R = wallFirst ? sb->radius() : sa->radius();
+            const vec3 c = pW.toBody(pS.position());
+            std::vector<wallMeshShape::plane> planes;
+            if (w.convexFluidNear(c, R, planes))
+            {
+                const double eps = 1e-12*R;
+                std::vector<const wallMeshShape::plane*> crossed;
+                for (const wallMeshShape::plane& q : planes)
+                {
+                    if (q.normal.dot(c) - q.offset < R - eps) crossed.push_back(&q);
+                }
+                bool apart = true;
+                for (size_t i = 0; apart && i < crossed.size(); ++i)
+                {
+                    for (size_t j = i + 1; apart && j < crossed.size(); ++j)
+                    {
+                        apart = distanceBehindBoth(c, *crossed[i], *crossed[j]) >= R - eps;
+                    }
+                }
+                if (apart)
+                {
+                    for (const wallMeshShape::plane* q : crossed)
+                    {
+                        contactGeometry one = sphereOverlap::cap
+                        (
+                            pW.toWorld(q->offset*q->normal),
+                            pW.vectorToWorld(q->normal),
+                            pS.position(),
+                            R
+                        );
+                        for (contactRegion& r : one.regions)
+                        {
+                            if (!wallFirst) r.normal = -r.normal;
+                            g.regions.push_back(r);
+                        }
+                    }
+                    return true;
+                }
+            }
         }
     }
 

@@ -1,0 +1,116 @@
+#!/bin/bash
+# Spheres thrown into the corners of a box tank whose walls are a mesh
+# patch: what their contacts with the walls cost, two libraries side by
+# side.
+#
+#   validation/benchmarks/spheresInCornersBenchmark.sh -libA DIR -libB DIR [-work DIR]
+#
+# Builds the case from caseTemplates/quickStart (its 40 x 40 x 80 mm tank
+# of water, 4 mm cells, walls a `patch` wall): four glass spheres 10 mm
+# across, each 0.1 mm from two side walls, thrown at 0.07 m/s into its
+# corner, where they bounce off the floor and both sides for 0.25 s.
+# Runs pimpleFoam twice at once, with libimmersedDEM.so from -libA and
+# from -libB (folders holding the library; build the one to compare with
+# from another commit and copy its .build/lib), so the two runs share the
+# machine alike and their ratios hold. Prints each run's summary and
+# work line (octree queries), and the ratios B/A. Exits 1 if a run fails.
+# Where the two libraries' contact geometry differs (the octree's
+# volume within 0.5% against the exact caps), the bounces differ too:
+# the bodies' end positions are printed, not compared.
+set -u
+here="$(cd "$(dirname "$0")" && pwd -P)"
+project="$(cd "$here/../.." && pwd -P)"
+libA= libB= work=/tmp/immersedDEM-benchmark-spheresInCorners
+while [ $# -gt 0 ]
+do
+    case "$1" in
+        -libA|-libB|-work)
+            [ $# -ge 2 ] || { echo "$1 needs a value" 1>&2; exit 1; }
+            case "$1" in
+                -libA) libA="$2" ;; -libB) libB="$2" ;; -work) work="$2" ;;
+            esac
+            shift 2 ;;
+        *) echo "Unknown option $1 (see the header of $0)" 1>&2; exit 1 ;;
+    esac
+done
+for l in "$libA" "$libB"
+do
+    [ -f "$l/libimmersedDEM.so" ] || { echo "No libimmersedDEM.so in '$l' (-libA and -libB are required)" 1>&2; exit 1; }
+done
+. "$project/src/etc/bashrc"
+libA="$(cd "$libA" && pwd -P)"; libB="$(cd "$libB" && pwd -P)"
+if [ -e "$work" ] && ! [ -f "$work/A/log.pimpleFoam" ]
+then
+    echo "$work exists and is not this benchmark's: give another -work" 1>&2; exit 1
+fi
+rm -rf "$work"; mkdir -p "$work"
+c="$work/case"
+cp -r "$project/caseTemplates/quickStart" "$c"
+rm -rf "$c/constant/triSurface"
+cat > "$c/constant/immersedDEMProperties" <<'DICT'
+FoamFile { version 2.0; format ascii; class dictionary; object immersedDEMProperties; }
+materials
+{
+    glass { youngsModulus 1e7; poissonsRatio 0.24; restitution 0.9; friction 0.3; }
+}
+bodies
+{
+    b1 { shape sphere; radius 0.005; material glass; density 2500; position (-0.0149 -0.0149 0.012); velocity (-0.05 -0.05 0); }
+    b2 { shape sphere; radius 0.005; material glass; density 2500; position (0.0149 -0.0149 0.012); velocity (0.05 -0.05 0); }
+    b3 { shape sphere; radius 0.005; material glass; density 2500; position (-0.0149 0.0149 0.03); velocity (-0.05 0.05 0); }
+    b4 { shape sphere; radius 0.005; material glass; density 2500; position (0.0149 0.0149 0.006); velocity (0.05 0.05 0); }
+}
+walls
+{
+    tank { type patch; patches (walls); material glass; }
+}
+DICT
+(
+    cd "$c" \
+ && foamDictionary -entry endTime -set 0.25 system/controlDict > /dev/null \
+ && foamDictionary -entry writeControl -set adjustableRunTime system/controlDict > /dev/null \
+ && foamDictionary -entry writeInterval -set 0.05 system/controlDict > /dev/null \
+ && foamDictionary -entry bodies/surface -remove constant/fvOptions > /dev/null \
+ && foamDictionary -entry bodies/penalty -remove constant/fvOptions > /dev/null \
+ && blockMesh > log.blockMesh 2>&1
+) || { echo "Could not make the case in $c (see $c/log.blockMesh)" 1>&2; exit 1; }
+lib=("$libA" "$libB"); i=0
+for v in A B
+do
+    cp -r "$c" "$work/$v"
+    (cd "$work/$v" && LD_LIBRARY_PATH="${lib[$i]}:$LD_LIBRARY_PATH" pimpleFoam > log.pimpleFoam 2>&1) &
+    i=$((i + 1))
+done
+wait
+status=0
+for v in A B
+do
+    log="$work/$v/log.pimpleFoam"
+    if ! grep -q "^End" "$log"
+    then
+        echo "run $v did not end: $log"; status=1; continue
+    fi
+    echo "== $v"
+    sed -n '/Summary (wall-clock seconds/,/largest overlap/p' "$log"
+    grep "contacts evaluated" "$log" | tail -1
+    echo "   bodies at the end (name, position):"
+    tail -4 "$work/$v/postProcessing/bodies/0/bodies.dat" | awk '{print "     " $2, $3, $4, $5}'
+done
+[ $status -eq 0 ] || exit 1
+/usr/bin/python3 - "$work" <<'PY'
+import re, sys
+work = sys.argv[1]
+def figures(v):
+    log = open("%s/%s/log.pimpleFoam" % (work, v)).read()
+    s = log[log.rindex("Summary (wall-clock seconds"):]
+    def part(name):
+        return float(re.search(r"^\s+%s\s+([0-9.]+)" % re.escape(name), s, re.M).group(1))
+    per = float(re.search(r"([0-9.e+]+) wall s per simulated s", s).group(1))
+    q = int(re.findall(r"queries (\d+) over", log)[-1])
+    return part("contact geometry and laws"), part("immersedDEM (all of the above)"), per, q
+A, B = figures("A"), figures("B")
+print("\nB/A:")
+for k, name in enumerate(["contact geometry and laws [s]", "the plugin [s]", "wall s per simulated s"]):
+    print("  %-32s %8.3f -> %8.3f  %.3f" % (name, A[k], B[k], B[k]/A[k]))
+print("  %-32s %8d -> %8d" % ("octree queries", A[3], B[3]))
+PY
