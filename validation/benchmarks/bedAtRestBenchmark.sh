@@ -43,17 +43,8 @@ do
     [ -n "${!v}" ] || { echo "-${v%_} is required (see the header of $0)" 1>&2; exit 1; }
 done
 [ -d "$case_/$time_" ] || { echo "No time folder $time_ in $case_" 1>&2; exit 1; }
-for l in "$libA" "$libB"
-do
-    [ -f "$l/libimmersedDEM.so" ] || { echo "No libimmersedDEM.so in $l" 1>&2; exit 1; }
-done
-. "$project/src/etc/bashrc"
-libA="$(cd "$libA" && pwd -P)"; libB="$(cd "$libB" && pwd -P)"
-if [ -e "$work" ] && ! [ -f "$work/A/log.pimpleFoam" ]
-then
-    echo "$work exists and is not this benchmark's: give another -work" 1>&2; exit 1
-fi
-rm -rf "$work"; mkdir -p "$work"
+. "$here/twoLibraries.sh"
+twoLibrariesPrepare
 # The CFD step at T, from the solver's last time folder's uniform/time
 dt=$(sed -n 's/^deltaT[ \t]\+\([^;]*\);/\1/p' "$case_/$time_/uniform/time")
 end=$(/usr/bin/python3 -c "print('%.6g' % ($time_ + ($steps + 0.5)*$dt))")
@@ -73,13 +64,7 @@ do
     )
 done
 echo "From t = $time_ to $end (deltaT $dt), A: $libA, B: $libB"
-lib=("$libA" "$libB"); i=0
-for v in A B
-do
-    (cd "$work/$v" && LD_LIBRARY_PATH="${lib[$i]}:$LD_LIBRARY_PATH" pimpleFoam > log.pimpleFoam 2>&1) &
-    i=$((i + 1))
-done
-wait
+twoLibrariesRun
 /usr/bin/python3 - "$work" <<'PY'
 import glob, os, re, sys
 work = sys.argv[1]

@@ -33,17 +33,8 @@ do
         *) echo "Unknown option $1 (see the header of $0)" 1>&2; exit 1 ;;
     esac
 done
-for l in "$libA" "$libB"
-do
-    [ -f "$l/libimmersedDEM.so" ] || { echo "No libimmersedDEM.so in '$l' (-libA and -libB are required)" 1>&2; exit 1; }
-done
-. "$project/src/etc/bashrc"
-libA="$(cd "$libA" && pwd -P)"; libB="$(cd "$libB" && pwd -P)"
-if [ -e "$work" ] && ! [ -f "$work/A/log.pimpleFoam" ]
-then
-    echo "$work exists and is not this benchmark's: give another -work" 1>&2; exit 1
-fi
-rm -rf "$work"; mkdir -p "$work"
+. "$here/twoLibraries.sh"
+twoLibrariesPrepare
 c="$work/case"
 cp -r "$project/caseTemplates/quickStart" "$c"
 rm -rf "$c/constant/triSurface"
@@ -74,14 +65,9 @@ DICT
  && foamDictionary -entry bodies/penalty -remove constant/fvOptions > /dev/null \
  && blockMesh > log.blockMesh 2>&1
 ) || { echo "Could not make the case in $c (see $c/log.blockMesh)" 1>&2; exit 1; }
-lib=("$libA" "$libB"); i=0
-for v in A B
-do
-    cp -r "$c" "$work/$v"
-    (cd "$work/$v" && LD_LIBRARY_PATH="${lib[$i]}:$LD_LIBRARY_PATH" pimpleFoam > log.pimpleFoam 2>&1) &
-    i=$((i + 1))
-done
-wait
+cp -r "$c" "$work/A"
+cp -r "$c" "$work/B"
+twoLibrariesRun
 status=0
 for v in A B
 do
