@@ -23,6 +23,9 @@ Description
 
     Outputs, in postProcessing/immersedDEMSolve/<startTime>/: bodies.dat,
     contacts.dat and VTK/bodies_<time>.vtk with VTK/bodies.vtk.series.
+    Nothing goes into the case's time folders, so the coupled run that
+    follows starts where its controlDict says (with -withFunctionObjects,
+    OpenFOAM writes their state at each write time).
 
     Parallel (mpirun -np N immersedDEMSolve -parallel): every rank holds
     every body and the ranks share out the pair evaluations; the loads are
@@ -307,8 +310,29 @@ int main(int argc, char *argv[])
         stepsAtReport = steps;
     };
 
+    // Time::loop runs the function objects and, at every write time,
+    // writes their state (uniform/functionObjects/functionObjectProperties)
+    // into a time folder of the case, even with the function objects off:
+    // a coupled run with startFrom latestTime would then start from a
+    // folder with no fields. Without function objects, the time is
+    // advanced by hand and nothing is written into the case's time folders
+    const bool withFunctionObjects = runTime.functionObjects().status();
+    auto nextStep = [&runTime, withFunctionObjects]() -> bool
+    {
+        if (withFunctionObjects)
+        {
+            return runTime.loop();
+        }
+        if (runTime.value() >= runTime.endTime().value() - 0.5*runTime.deltaTValue())
+        {
+            return false;
+        }
+        ++runTime;
+        return true;
+    };
+
     Info<< "\nStarting time loop\n" << endl;
-    while (runTime.loop())
+    while (nextStep())
     {
         label nSteps = 0;
         auto a = wallClock::now();
