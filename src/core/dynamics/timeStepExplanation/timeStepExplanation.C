@@ -127,7 +127,7 @@ std::string timeStepExplanation::choice(const demSolver::stepChoice& c)
         }
         else if (!c.nameA.empty())
         {
-            os  << "; 1/500 of the relaxation time of body " << c.nameA
+            os  << "; a tenth of the relaxation time of body " << c.nameA
                 << " under the fluid's damping, (m + m_a)/c = " << c.relaxation << " s";
         }
         os  << ")";

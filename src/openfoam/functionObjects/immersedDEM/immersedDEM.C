@@ -9,7 +9,23 @@
 #include "timeStepExplanation.H"
 #include "immersedDEMReader.H"
 #include "addToRunTimeSelectionTable.H"
+#include <cstdio>
 #include <string>
+
+namespace
+{
+
+// A figure of the per-step line to 4 significant digits, whatever the log
+// stream's precision (controlDict's writePrecision: 17 in the cases that
+// restart bit for bit, which printed 0.17549714500000002)
+std::string figure(const double x)
+{
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", x);
+    return b;
+}
+
+} // End anonymous namespace
 
 namespace Foam
 {
@@ -489,10 +505,10 @@ bool Foam::functionObjects::immersedDEM::execute()
         << ", bodies " << state_.nBodies()
         << ", contacts " << state_.dem().contacts().size()
         << ", DEM steps " << nSteps
-        << ", largest overlap " << largest << " m3"
-        << ", seconds: projection " << projectionSeconds
-        << " DEM " << demSeconds
-        << " forcing " << forcingSeconds
+        << ", largest overlap " << figure(largest).c_str() << " m3"
+        << ", seconds: projection " << figure(projectionSeconds).c_str()
+        << " DEM " << figure(demSeconds).c_str()
+        << " forcing " << figure(forcingSeconds).c_str()
         << " (projected bodies " << state_.projection().lastProjected() << ')'
         << ", DEM step " << ::immersedDEM::timeStepExplanation::lastStep(state_.dem()).c_str()
         << endl;
