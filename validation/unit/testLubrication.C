@@ -173,17 +173,25 @@ namespace
 struct coasting
 {
     double R = 0.005, rho = 2500, mu = 0.1, cell = 5e-4, v0 = -0.01;
+    //- The floor's film factor (1 no-slip, 1/4 slip)
+    double film = 1;
     demSolver dem;
     int ball = -1;
 
-    explicit coasting(double deltaT = 0, double mu_ = 0.1, bool active = true)
+    explicit coasting
+    (
+        double deltaT = 0, double mu_ = 0.1, bool active = true,
+        double film_ = 1
+    )
     :
         mu(mu_),
+        film(film_),
         dem(makeDem(deltaT, active))
     {
         rigidBody floor("floor", std::make_shared<halfSpaceShape>(), 1);
         floor.pose = halfSpaceShape::poseOf(vec3::Zero(), vec3::UnitZ());
         floor.motion = motionType::fixed;
+        floor.filmFactor = film;
         dem.addBody(floor, true);
         rigidBody b("ball", std::make_shared<sphereShape>(R), rho);
         b.pose = at(vec3(0, 0, R + cell));
@@ -207,12 +215,30 @@ struct coasting
     double gap() const { return dem.bodies()[ball].pose.position().z() - R; }
     double speed() const { return dem.bodies()[ball].velocity.z(); }
 
+    //- Coast until the ball stops (at most 4000 steps of 1e-4 s): the
+    //  largest relative error of its speed against exactSpeed while it
+    //  is above half its start (near its stop the speed is small), and
+    //  the number of steps checked
+    double coast(int& checked)
+    {
+        double worst = 0;
+        checked = 0;
+        for (int i = 0; i < 4000 && speed() < 0; ++i)
+        {
+            dem.advance(1e-4);
+            if (speed() > 0.5*v0) continue;
+            worst = std::max(worst, std::abs(speed()/exactSpeed(gap()) - 1));
+            ++checked;
+        }
+        return worst;
+    }
+
     //- The film slows the ball and its nominal added mass
     double exactSpeed(double h) const
     {
         const double m =
             rho*4.0/3.0*M_PI*R*R*R + dem.bodies()[ball].fluid.nominalAddedMass;
-        return v0 + 6*M_PI*mu*R*R/m*(std::log(cell/h) - (cell - h)/cell);
+        return v0 + film*6*M_PI*mu*R*R/m*(std::log(cell/h) - (cell - h)/cell);
     }
 };
 
@@ -222,20 +248,8 @@ struct coasting
 TEST(lubrication, sphereCoastingToAWallFollowsTheFilm)
 {
     coasting c;
-    double worst = 0;
     int checked = 0;
-    for (int i = 0; i < 4000 && c.speed() < 0; ++i)
-    {
-        c.dem.advance(1e-4);
-        const double h = c.gap();
-        if (c.speed() > 0.5*c.v0)
-        {
-            continue;   // near its stop the speed is small: relative error
-        }
-        const double err = std::abs(c.speed()/c.exactSpeed(h) - 1);
-        worst = std::max(worst, err);
-        ++checked;
-    }
+    const double worst = c.coast(checked);
     EXPECT_GT(checked, 10);
     // 1%: the DEM's sub-steps integrate the film's 1/h against the exact
     // v(h); without the film (or with m + m_a) the speed is off by more
@@ -248,6 +262,106 @@ TEST(lubrication, sphereCoastingToAWallFollowsTheFilm)
 }
 
 
+TEST(lubrication, sphereCoastingToASlipWallFollowsAQuarterOfTheFilm)
+{
+    // A stress-free plane (a slip patch): by the mirror image, the sphere
+    // and its image approach each other at 2 u across 2 h, with the pair's
+    // radius R/2: 6 pi mu (R/2)^2 (2 u)/(2 h) = 6 pi mu R^2 u/h / 4
+    coasting slip(0, 0.1, true, 0.25);
+    coasting noSlip;
+    int checked = 0, checkedNoSlip = 0;
+    const double worst = slip.coast(checked);
+    noSlip.coast(checkedNoSlip);
+    EXPECT_GT(checked, 10);
+    // 1%: as for the no-slip wall (the sub-steps' integration of 1/h)
+    EXPECT_LT(worst, 0.01) << "largest relative speed error";
+    // Each stops where its own exact speed is zero (h/cell 0.43 and
+    // 0.14 here): 5% of the approach speed, as for the nominal added mass
+    EXPECT_LT(std::abs(slip.exactSpeed(slip.gap())), 0.05*std::abs(slip.v0));
+    EXPECT_LT(std::abs(noSlip.exactSpeed(noSlip.gap())), 0.05*std::abs(noSlip.v0));
+    EXPECT_LT(slip.gap(), 0.5*noSlip.gap());
+}
+
+
+TEST(lubrication, wallFilmFollowsEachFacesFluidSide)
+{
+    // A tank (mesh wall) whose +x side slips and whose other sides stick:
+    // a cube approaching the +x side feels a quarter of the film of the
+    // same cube approaching the -x side (mirror poses), and none against a
+    // wall the fluid passes through (film factor 0)
+    const auto tankMesh = std::make_shared<wallMeshShape>
+    (
+        primitiveMeshes::openBox(vec3(-0.025, -0.025, 0), vec3(0.025, 0.025, 0.05), 8),
+        "tank", 0.01
+    );
+    std::vector<double> perFace(tankMesh->surface().faces.size(), 1);
+    const triangleSoup mesh = tankMesh->surface();
+    int slipFaces = 0;
+    for (size_t f = 0; f < mesh.faces.size(); ++f)
+    {
+        bool plusX = true;
+        for (int k = 0; k < 3; ++k)
+        {
+            plusX = plusX && std::abs(mesh.points[mesh.faces[f][k]].x() - 0.025) < 1e-12;
+        }
+        if (plusX)
+        {
+            perFace[f] = 0.25;
+            ++slipFaces;
+        }
+    }
+    ASSERT_GT(slipFaces, 0);
+    const auto force = [&](double side, double tankFactor, bool perFaces)
+    {
+        contactMaterial glass{"glass", 1e7, 0.24, 1, 0};
+        demSettings s;
+        s.overlap.level = 0;
+        demSolver dem({glass}, s);
+        rigidBody tank("tank", tankMesh, 1);
+        tank.motion = motionType::fixed;
+        tank.filmFactor = tankFactor;
+        if (perFaces)
+        {
+            tank.faceFilm = std::make_shared<std::vector<double>>(perFace);
+        }
+        dem.addBody(tank, true);
+        rigidBody b("cube", cube(0.005), 2500);
+        b.pose = at(vec3(side*0.019, 0.001, 0.025));
+        b.velocity = vec3(side*0.033, 0, 0);
+        b.fluidCellSize = 3.125e-3;
+        const int i = dem.addBody(b);
+        dem.setFluidViscosity(1e-3);
+        // (one short step: the film's force at the start velocity, not
+        // averaged over sub-steps that it slows differently)
+        dem.step(1e-8);
+        return std::make_pair(dem.bodies()[i].lubricationForce, dem.work().lubricatedPairs);
+    };
+    // Near the slipping +x side a quarter of the film of the same pose
+    // against a wall that sticks everywhere; near the -x side (no-slip
+    // faces) the same film as there. (1e-6: the same pose and faces, one
+    // factor apart; the reported force follows the velocity the film
+    // changes within the step, 1.8e-9 relative at this step and 1.8e-6 at
+    // 1e-5 s; a wrong face's factor would be off by 0.75)
+    const auto plus = force(1, 1, true);
+    const auto plusSticking = force(1, 1, false);
+    ASSERT_LT(plusSticking.first.x(), 0) << "the film pushes the cube back";
+    EXPECT_NEAR(plus.first.x()/plusSticking.first.x(), 0.25, 1e-6);
+    const auto minus = force(-1, 1, true);
+    const auto minusSticking = force(-1, 1, false);
+    ASSERT_GT(minusSticking.first.x(), 0);
+    EXPECT_NEAR(minus.first.x()/minusSticking.first.x(), 1, 1e-6);
+    // One factor for the whole wall gives the same as the per-face one
+    // where all faces agree
+    const auto uniform = force(1, 0.25, false);
+    EXPECT_NEAR(uniform.first.x()/plus.first.x(), 1, 1e-12);
+    // No film against a wall the fluid passes through
+    const auto none = force(1, 0, false);
+    EXPECT_EQ(none.first.norm(), 0);
+    EXPECT_EQ(none.second, 0);
+    EXPECT_GT(plus.second, 0);
+}
+
+
 TEST(lubrication, filmSlowsTheBodyWithItsNominalAddedMass)
 {
     // The coupling's added mass m_a (here 4 m, the forcing's, for
@@ -257,15 +371,8 @@ TEST(lubrication, filmSlowsTheBodyWithItsNominalAddedMass)
     rigidBody& b = c.dem.bodies()[c.ball];
     b.fluid.addedMass = 4*b.mass();
     b.fluid.nominalAddedMass = 0.5*b.mass();
-    double worst = 0;
     int checked = 0;
-    for (int i = 0; i < 4000 && c.speed() < 0; ++i)
-    {
-        c.dem.advance(1e-4);
-        if (c.speed() > 0.5*c.v0) continue;
-        worst = std::max(worst, std::abs(c.speed()/c.exactSpeed(c.gap()) - 1));
-        ++checked;
-    }
+    const double worst = c.coast(checked);
     EXPECT_GT(checked, 10);
     // 1%: the DEM's sub-steps integrate the film's 1/h against the exact
     // v(h); without the film (or with m + m_a) the speed is off by more

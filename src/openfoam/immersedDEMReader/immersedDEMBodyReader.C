@@ -15,6 +15,8 @@
 #include "unitConversion.H"
 #include "IOstreams.H"
 #include "polyMesh.H"
+#include "volFields.H"
+#include "basicSymmetryFvPatchFields.H"
 
 #include <algorithm>
 #include <map>
@@ -228,6 +230,83 @@ rigidBody Foam::immersedDEMReaders::readBody
 }
 
 
+// The squeeze film a wall takes (lubrication.H), from its fluid side: a
+// quarter of a no-slip wall's where the fluid slips along it, none where
+// the fluid passes through it (film none: a distributor or a screen given
+// as a wall for the bodies only). Given by 'film', or for a patch wall by
+// the velocity's condition on each of its patches
+namespace
+{
+    double filmFactorOf(const word& kind)
+    {
+        return kind == "slip" ? 0.25 : kind == "none" ? 0 : 1;
+    }
+}
+
+
+void Foam::immersedDEMReaders::readWallFilm
+(
+    const word& name,
+    const dictionary& d,
+    const std::vector<label>& patchOfFace,
+    const polyMesh* mesh,
+    rigidBody& w
+)
+{
+    if (d.found("film"))
+    {
+        const word kind =
+            immersedDEMChecks::oneOf(d, "film", {"noSlip", "slip", "none"});
+        w.filmFactor = filmFactorOf(kind);
+        Info<< "        its lubrication film: " << kind << " (keyword film)"
+            << endl;
+        return;
+    }
+    if (patchOfFace.empty() || !mesh)
+    {
+        return;
+    }
+    // A patch wall: each patch's velocity condition (slip, symmetry and
+    // symmetryPlane, the basic symmetry conditions: the fluid slips; any
+    // other: the wall's film as for a no-slip wall)
+    const word UName("U");
+    const volVectorField* U = mesh->findObject<volVectorField>(UName);
+    if (!U)
+    {
+        Info<< "        its lubrication film: no-slip (no field " << UName
+            << " to read the patches' conditions from; keyword film sets it)"
+            << endl;
+        return;
+    }
+    std::map<label, double> factorOfPatch;
+    for (const label patchi : patchOfFace)
+    {
+        if (factorOfPatch.count(patchi)) continue;
+        const fvPatchVectorField& Ub = U->boundaryField()[patchi];
+        const word t = Ub.type();
+        const bool slips = isA<basicSymmetryFvPatchVectorField>(Ub);
+        factorOfPatch[patchi] = slips ? 0.25 : 1;
+        Info<< "        its lubrication film on patch "
+            << mesh->boundaryMesh()[patchi].name() << ": "
+            << (slips ? "slip" : "noSlip") << " (" << UName << " is " << t
+            << " there)" << endl;
+    }
+    const double first = factorOfPatch.begin()->second;
+    bool uniform = true;
+    for (const auto& [patchi, f] : factorOfPatch) uniform = uniform && f == first;
+    w.filmFactor = first;
+    if (!uniform)
+    {
+        auto perFace = std::make_shared<std::vector<double>>(patchOfFace.size());
+        for (size_t i = 0; i < patchOfFace.size(); ++i)
+        {
+            (*perFace)[i] = factorOfPatch[patchOfFace[i]];
+        }
+        w.faceFilm = perFace;
+    }
+}
+
+
 rigidBody Foam::immersedDEMReaders::readWall
 (
     const word& name,
@@ -239,13 +318,14 @@ rigidBody Foam::immersedDEMReaders::readWall
 )
 {
     const word type = immersedDEMChecks::oneOf(d, "type", {"plane", "triSurface", "patch"});
+    std::vector<label> patchOfFace;
     std::shared_ptr<const shape> geometry;
     bodyPose pose;
     if (type == "plane")
     {
         immersedDEMChecks::allowOnly
         (
-            d, {"type", "point", "normal", "material", "velocity"}
+            d, {"type", "point", "normal", "material", "velocity", "film"}
         );
         const vector n = d.get<vector>("normal");
         if (mag(n) == 0)
@@ -262,7 +342,7 @@ rigidBody Foam::immersedDEMReaders::readWall
     }
     else if (type == "patch")
     {
-        immersedDEMChecks::allowOnly(d, {"type", "patches", "material"});
+        immersedDEMChecks::allowOnly(d, {"type", "patches", "material", "film"});
         if (!mesh)
         {
             FatalIOErrorInFunction(d)
@@ -275,7 +355,8 @@ rigidBody Foam::immersedDEMReaders::readWall
         {
             geometry = std::make_shared<wallMeshShape>
             (
-                immersedDEMPatchSurface::of(*mesh, d, name), name, thickness
+                immersedDEMPatchSurface::of(*mesh, d, name, &patchOfFace),
+                name, thickness
             );
         }
         catch (const coreError& err)
@@ -290,7 +371,7 @@ rigidBody Foam::immersedDEMReaders::readWall
     {
         immersedDEMChecks::allowOnly
         (
-            d, {"type", "file", "scale", "flipNormals", "material", "velocity"}
+            d, {"type", "file", "scale", "flipNormals", "material", "velocity", "film"}
         );
         const fileName file = surfaceDir/d.get<fileName>("file");
         try
@@ -317,5 +398,6 @@ rigidBody Foam::immersedDEMReaders::readWall
     w.velocity = immersedDEMReader::toCore(d.getOrDefault<vector>("velocity", Zero));
     w.motion = w.velocity.norm() > 0 ? motionType::prescribed : motionType::fixed;
     Info<< "    wall " << name << ": " << type << endl;
+    readWallFilm(name, d, patchOfFace, mesh, w);
     return w;
 }

@@ -19,7 +19,8 @@ triangleSoup Foam::immersedDEMPatchSurface::of
 (
     const polyMesh& mesh,
     const dictionary& d,
-    const word& name
+    const word& name,
+    std::vector<label>* patchOfFace
 )
 {
     const wordRes selection(d.get<wordRes>("patches"));
@@ -31,8 +32,9 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             << ": " << selection << " matches no patch of the mesh; the patches are "
             << mesh.boundaryMesh().names() << nl << exit(FatalIOError);
     }
-    // Triangles as flat point triples, ordered by corner
+    // Triangles as flat point triples, ordered by corner, with their patch
     DynamicList<point> mine;
+    DynamicList<label> minePatch;
     const pointField& pts = mesh.points();
     for (const label patchi : ids.sortedToc())
     {
@@ -45,6 +47,7 @@ triangleSoup Foam::immersedDEMPatchSurface::of
                 mine.append(pts[f[0]]);
                 mine.append(pts[f[k + 1]]);     // flipped: normal into the fluid
                 mine.append(pts[f[k]]);
+                minePatch.append(patchi);
             }
         }
     }
@@ -52,11 +55,18 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     all[Pstream::myProcNo()] = mine;
     Pstream::gatherList(all);
     Pstream::scatterList(all);
+    List<labelList> allPatch(Pstream::nProcs());
+    allPatch[Pstream::myProcNo()] = minePatch;
+    Pstream::gatherList(allPatch);
+    Pstream::scatterList(allPatch);
 
     using key = std::array<double, 3>;
-    std::vector<std::array<key, 3>> tris;
-    for (const pointField& part : all)
+    // (the patch after the corners: the order, and so the surface, does
+    // not depend on the decomposition)
+    std::vector<std::pair<std::array<key, 3>, label>> tris;
+    for (label proci = 0; proci < all.size(); ++proci)
     {
+        const pointField& part = all[proci];
         for (label i = 0; i + 2 < part.size(); i += 3)
         {
             std::array<key, 3> t;
@@ -68,7 +78,7 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             // Start at the smallest corner, keeping the orientation
             const int first = int(std::min_element(t.begin(), t.end()) - t.begin());
             std::rotate(t.begin(), t.begin() + first, t.end());
-            tris.push_back(t);
+            tris.emplace_back(t, allPatch[proci][i/3]);
         }
     }
     if (tris.empty())
@@ -101,8 +111,8 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             if (sh.isZero()) continue;
             for (size_t i = 0; i < n; ++i)
             {
-                std::array<key, 3> t = tris[i];
-                for (key& c : t)
+                auto t = tris[i];
+                for (key& c : t.first)
                 {
                     for (int j = 0; j < 3; ++j) c[j] += sh[j];
                 }
@@ -115,7 +125,8 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     std::sort(tris.begin(), tris.end());
     triangleSoup s;
     std::map<key, int> index;
-    for (const auto& t : tris)
+    if (patchOfFace) patchOfFace->clear();
+    for (const auto& [t, patchi] : tris)
     {
         immersedDEM::triFace f;
         for (int c = 0; c < 3; ++c)
@@ -133,6 +144,7 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             }
         }
         s.faces.push_back(f);
+        if (patchOfFace) patchOfFace->push_back(patchi);
     }
     return s;
 }

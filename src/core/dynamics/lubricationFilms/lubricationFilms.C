@@ -1,4 +1,5 @@
 #include "lubricationFilms.H"
+#include "wallMeshShape.H"
 
 #include <algorithm>
 #include <cmath>
@@ -74,6 +75,24 @@ double lubricationFilms::inverseMassAlong
     }
     const vec3 rn = (x - b.pose.position()).cross(n);
     return 1/(b.mass() + addedMass) + b.inverseInertiaAlong(rn);
+}
+
+
+double lubricationFilms::filmFactorAt(const rigidBody& b, const vec3& x)
+{
+    if (!b.faceFilm)
+    {
+        return b.filmFactor;
+    }
+    // (only a wall mesh has faces; a mixed wall's films cost one query)
+    const auto* w = dynamic_cast<const wallMeshShape*>(b.geometry.get());
+    if (!w)
+    {
+        return b.filmFactor;
+    }
+    const int face = w->distanceField().tree().closest(b.pose.toBody(x)).face;
+    return face >= 0 && size_t(face) < b.faceFilm->size()
+        ? (*b.faceFilm)[size_t(face)] : b.filmFactor;
 }
 
 
@@ -288,7 +307,14 @@ void lubricationFilms::applyFilm
     double footprintHeight, const vec3& footprintCentre
 ) const
 {
-    double coeff = lubrication::coefficient
+    // A wall the fluid slips along takes a quarter of the film, one it
+    // passes through none
+    const double factor = filmFactorAt(A, x)*filmFactorAt(B, x);
+    if (!(factor > 0))
+    {
+        return;
+    }
+    double coeff = factor*lubrication::coefficient
     (
         settings_.viscosity, R, gap, hAct, hRough
     );
@@ -320,7 +346,9 @@ void lubricationFilms::applyFilm
         thin -= n.dot(thin)*n;
         const double thinLength = thin.norm();
         const vec3 g = thinLength > 0 ? vec3(thin/thinLength) : vec3::Zero();
-        flat.normal *= w.normal;
+        flat.normal *= factor*w.normal;
+        flat.tilt1 *= factor;
+        flat.tilt2 *= factor;
         // The tilt across the gradient takes the wedge's factor, about it
         // the normal film's
         const double across1 = n.cross(axes.e[0]).dot(g);
