@@ -9,6 +9,7 @@
 #include "timeStepExplanation.H"
 #include "immersedDEMReader.H"
 #include "addToRunTimeSelectionTable.H"
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -135,6 +136,39 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
                 << state_.properties().objectPath() << "; if this one should"
                 << " not have, see the log above for what drove it out"
                 << exit(FatalError);
+        }
+        // Partly outside (cut by an outlet, an inlet or a symmetry plane
+        // that is not one of its walls): the part outside is not in the
+        // fluid, so the fluid's load on it is not the physical one (a body
+        // crossing an outlet is braked, one cut in half by a symmetry
+        // plane falls 30% too fast). Said once, with the remedy, until it
+        // is back inside
+        const scalar inside =
+            i < projectedVolume.size()
+          ? projectedVolume[i]/b.geometry->volume() : 1;
+        if (b.dynamic() && inside < 0.9)
+        {
+            if (warnedOutside_.insert(b.name).second)
+            {
+                WarningInFunction
+                    << "Function object " << name() << ", time "
+                    << time_.timeName() << ": body '" << b.name.c_str()
+                    << "' is only " << std::round(1000*inside)/10
+                    << "% inside the fluid"
+                    << " mesh (centre " << x << ", mesh bounds "
+                    << mesh_.bounds() << "). The part outside is not in the"
+                    << " fluid, so the fluid force on it is not the physical"
+                    << " one. Bodies must lie inside the mesh: take them out"
+                    << " before they reach an outlet (a removal region in "
+                    << state_.properties().objectPath() << ", ending a"
+                    << " radius before the outlet), start them inside, and"
+                    << " model a symmetry plane a body may touch as one of"
+                    << " its walls" << endl;
+            }
+        }
+        else if (inside > 0.95)
+        {
+            warnedOutside_.erase(b.name);
         }
         if (h[i] >= GREAT || !(deltaT > 0))
         {
