@@ -285,7 +285,7 @@ void Foam::immersedDEMReaders::readWallFilm
         const fvPatchVectorField& Ub = U->boundaryField()[patchi];
         const word t = Ub.type();
         const bool slips = isA<basicSymmetryFvPatchVectorField>(Ub);
-        factorOfPatch[patchi] = slips ? 0.25 : 1;
+        factorOfPatch[patchi] = filmFactorOf(slips ? "slip" : "noSlip");
         Info<< "        its lubrication film on patch "
             << mesh->boundaryMesh()[patchi].name() << ": "
             << (slips ? "slip" : "noSlip") << " (" << UName << " is " << t
