@@ -5,8 +5,10 @@ Description
     its own replicated demSolver, exchanging through a shared-memory
     allGather. A pile of faceted bodies and spheres in a tank of wall
     patches, in a liquid (lubrication on), contact reuse on, a body removed
-    on the way: every process's trajectories and contact histories are the
-    serial run's, bit for bit, and the pairs are shared out. A pour of
+    on the way, and the same with Raschig rings of convex pieces (exact
+    contacts and films): every process's trajectories and contact
+    histories are the serial run's, bit for bit, and the pairs are shared
+    out. A pour of
     spheres on plane walls: the sphere sweep gives the general loop's
     results bit for bit, alone and shared.
 \*---------------------------------------------------------------------------*/
@@ -209,14 +211,14 @@ void advanceAndRecord
 
 
 //- Twelve bodies (non-convex tori, icosahedra measured on the octree,
-//  spheres) dropped in a tank of wall patches, in a liquid; body 5 removed
-//  half way
-runResult runPile(std::shared_ptr<demCommunicator> comm)
+//  spheres; or twelve Raschig rings of convex pieces, measured exactly)
+//  dropped in a tank of wall patches, in a liquid; body 5 removed half way
+runResult runPile(std::shared_ptr<demCommunicator> comm, bool rings = false)
 {
     demSettings s;
     s.gravity = vec3(0, 0, -9.81);
     s.overlap = overlapSettings{0.001, 1};
-    s.overlap.convexExact = false;
+    s.overlap.convexExact = rings;
     s.reuseContacts = true;
     demSolver dem({test::material("soft", 1e6)}, s);
     dem.setCommunicator(comm);
@@ -234,10 +236,16 @@ runResult runPile(std::shared_ptr<demCommunicator> comm)
     tank.motion = motionType::fixed;
     dem.addBody(tank, true);
 
-    const auto torus = std::make_shared<triangleMeshShape>
-    (
-        primitiveMeshes::torus(0.004, 0.0015, 16, 8), "torus"
-    );
+    // (rings: Raschig rings of convex pieces, contacts and films exact)
+    const auto torus = rings
+      ? std::make_shared<triangleMeshShape>
+        (
+            primitiveMeshes::hollowCylinder(0.004, 0.002, 0.006, 24), "ring"
+        )
+      : std::make_shared<triangleMeshShape>
+        (
+            primitiveMeshes::torus(0.004, 0.0015, 16, 8), "torus"
+        );
     const auto ico = std::make_shared<triangleMeshShape>
     (
         primitiveMeshes::icosphere(0.004, 0), "icosahedron"
@@ -247,7 +255,7 @@ runResult runPile(std::shared_ptr<demCommunicator> comm)
     for (int k = 0; k < 12; ++k)
     {
         const std::shared_ptr<const shape> g =
-            k % 3 == 0 ? std::shared_ptr<const shape>(torus)
+            rings || k % 3 == 0 ? std::shared_ptr<const shape>(torus)
           : k % 3 == 1 ? std::shared_ptr<const shape>(ico)
           : std::shared_ptr<const shape>(ball);
         rigidBody b("b" + std::to_string(k), g, 2500);
@@ -270,7 +278,7 @@ runResult runPile(std::shared_ptr<demCommunicator> comm)
 
 
 //- The pile run on n threads sharing the pairs
-std::vector<runResult> runOn(int n)
+std::vector<runResult> runOn(int n, bool rings = false)
 {
     sharedBoard board(n);
     std::vector<runResult> results(n);
@@ -281,7 +289,7 @@ std::vector<runResult> runOn(int n)
         (
             [&, rank]
             {
-                results[rank] = runPile(std::make_shared<threadCommunicator>(board, rank, n));
+                results[rank] = runPile(std::make_shared<threadCommunicator>(board, rank, n), rings);
             }
         );
     }
@@ -319,9 +327,9 @@ TEST(demProcesses, pairOwnersAreSpreadAndFixed)
 }
 
 
-TEST(demProcesses, sharedPairsGiveTheSerialTrajectoriesBitForBit)
+void expectSharedPairsGiveTheSerialRun(bool rings)
 {
-    const runResult serial = runPile(nullptr);
+    const runResult serial = runPile(nullptr, rings);
     // The run must have contacts, carried contacts and films to share
     ASSERT_GT(serial.contacts, 10);
     ASSERT_GT(serial.reusedEvaluations, 0);
@@ -334,7 +342,7 @@ TEST(demProcesses, sharedPairsGiveTheSerialTrajectoriesBitForBit)
 
     for (const int n : {2, 3})
     {
-        const std::vector<runResult> ranks = runOn(n);
+        const std::vector<runResult> ranks = runOn(n, rings);
         long evaluations = 0, carried = 0, films = 0;
         for (int rank = 0; rank < n; ++rank)
         {
@@ -362,6 +370,18 @@ TEST(demProcesses, sharedPairsGiveTheSerialTrajectoriesBitForBit)
         EXPECT_EQ(carried, serial.reusedEvaluations);
         EXPECT_EQ(films, serial.lubricatedPairs);
     }
+}
+
+
+TEST(demProcesses, sharedPairsGiveTheSerialTrajectoriesBitForBit)
+{
+    expectSharedPairsGiveTheSerialRun(false);
+}
+
+
+TEST(demProcesses, sharedPairsOfRingsOfConvexPiecesGiveTheSerialTrajectoriesBitForBit)
+{
+    expectSharedPairsGiveTheSerialRun(true);
 }
 
 
