@@ -237,7 +237,7 @@ runResult runPile(std::shared_ptr<demCommunicator> comm, bool rings = false)
     dem.addBody(tank, true);
 
     // (rings: Raschig rings of convex pieces, contacts and films exact)
-    const auto torus = rings
+    const auto nonConvex = rings
       ? std::make_shared<triangleMeshShape>
         (
             primitiveMeshes::hollowCylinder(0.004, 0.002, 0.006, 24), "ring"
@@ -255,7 +255,7 @@ runResult runPile(std::shared_ptr<demCommunicator> comm, bool rings = false)
     for (int k = 0; k < 12; ++k)
     {
         const std::shared_ptr<const shape> g =
-            rings || k % 3 == 0 ? std::shared_ptr<const shape>(torus)
+            rings || k % 3 == 0 ? std::shared_ptr<const shape>(nonConvex)
           : k % 3 == 1 ? std::shared_ptr<const shape>(ico)
           : std::shared_ptr<const shape>(ball);
         rigidBody b("b" + std::to_string(k), g, 2500);
