@@ -5,10 +5,11 @@ DEM sub-step), written to postProcessing/bodies/0/contactForce.png."""
 import os, sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "python"))
 from immersedDEMData import readTable
+from immersedDEMFigure import pyplot
 
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+plt = pyplot("plotForce.py", checksFollow=False)
+if plt is None:
+    sys.exit(1)
 
 here = os.path.dirname(os.path.abspath(__file__))
 folder = os.path.join(here, "postProcessing", "bodies", "0")

@@ -104,8 +104,10 @@ def readRuns(directory, name="bodies"):
     (postProcessing/<function object>/<start>/) and <name>_<start>.dat of a
     rerun from the same start time. Where runs overlap in time the later
     run's rows are kept (a restart from an earlier time replaces the rows
-    after it). Raises ValueError if there is none, or if their columns
-    differ."""
+    after it). Runs whose columns differ (a restart of a case written by
+    an older version, before columns were added) are joined on the columns
+    they share, in the first run's order. Raises ValueError if there is
+    none, or if they share no time column."""
     files = []
     if os.path.isdir(directory):
         for start in os.listdir(directory):
@@ -119,13 +121,14 @@ def readRuns(directory, name="bodies"):
         raise ValueError("no %s.dat under %s: run the case first" % (name, directory))
     tables = [readTable(f) for f in files]
     tables.sort(key=lambda t: t.rows[0][t.index("time")] if len(t) else float("inf"))
-    columns = tables[0].columns
+    columns = [c for c in tables[0].columns if all(c in t for t in tables)]
+    if "time" not in columns:
+        raise ValueError("the tables under %s share no 'time' column" % directory)
     rows = []
+    i = columns.index("time")
     for t in tables:
-        if t.columns != columns:
-            raise ValueError("%s has other columns than %s" % (t.path, tables[0].path))
         if len(t):
+            idx = [t.index(c) for c in columns]
             start = t.rows[0][t.index("time")]
-            i = t.index("time")
-            rows = [r for r in rows if r[i] < start] + t.rows
+            rows = [r for r in rows if r[i] < start] + [[r[k] for k in idx] for r in t.rows]
     return Table(columns, rows, directory)

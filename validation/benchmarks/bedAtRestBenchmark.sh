@@ -95,11 +95,14 @@ print("  %-40s %7.1f -> %7.1f    %.3f" % ("wall s per simulated s", A[1], B[1], 
 # grow where bodies move; a bed at rest keeps them near 1e-12 m
 def positions(v):
     f = glob.glob(os.path.join(work, v, "postProcessing", "*", "*", "bodies.dat"))
-    rows = [l.split() for l in open(f[0]) if l.strip() and not l.startswith("#")]
+    lines = open(f[0]).read().splitlines()
+    head = lines[0].lstrip("#").split()
+    rows = [l.split() for l in lines[1:] if l.strip() and not l.startswith("#")]
     first, last = rows[0][0], rows[-1][0]
-    # (the unwrapped positions xu yu zu, the last three columns: a body
-    # crossing a periodic boundary has not moved a period)
-    at = lambda t: {r[1]: tuple(map(float, r[-3:])) for r in rows if r[0] == t}
+    # (the unwrapped positions xu yu zu: a body crossing a periodic
+    # boundary has not moved a period)
+    cols = [head.index(c) for c in ("xu", "yu", "zu")]
+    at = lambda t: {r[1]: tuple(float(r[c]) for c in cols) for r in rows if r[0] == t}
     return at(first), at(last)
 (a0, a1), (b0, b1) = positions("A"), positions("B")
 far = lambda p, q: max(max(abs(x - y) for x, y in zip(p[k], q[k])) for k in p)

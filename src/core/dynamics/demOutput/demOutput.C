@@ -75,7 +75,7 @@ const std::vector<std::string>& demOutput::bodyColumns()
         "time", "body", "x", "y", "z", "qw", "qx", "qy", "qz",
         "vx", "vy", "vz", "wx", "wy", "wz",
         "Fx", "Fy", "Fz", "Fcx", "Fcy", "Fcz", "Ffx", "Ffy", "Ffz",
-        "Tx", "Ty", "Tz", "Flx", "Fly", "Flz", "xu", "yu", "zu"
+        "Tx", "Ty", "Tz", "Flx", "Fly", "Flz", "xu", "yu", "zu", "m", "V"
     };
     return c;
 }
@@ -125,7 +125,7 @@ void demOutput::writeBodies(double time, const demSolver& dem)
         v3(T);
         v3(b.lubricationForce);
         v3(x + b.periodicOffset);
-        bodies_ << '\n';
+        bodies_ << ' ' << b.mass() << ' ' << b.geometry->volume() << '\n';
     }
     bodies_.flush();
 }
