@@ -6,6 +6,8 @@
 #include "coreError.H"
 #include "Pstream.H"
 #include "ListOps.H"
+#include "wallPolyPatch.H"
+#include "processorPolyPatch.H"
 
 using namespace immersedDEM;
 
@@ -38,6 +40,27 @@ Foam::immersedDEMStreams::immersedDEMStreams
             }
         }
     }
+    // The open patches: where a body carried out of the mesh leaves it
+    if (mesh_)
+    {
+        DynamicList<label> open;
+        DynamicList<word> names;
+        forAll(mesh_->boundaryMesh(), patchi)
+        {
+            const polyPatch& pp = mesh_->boundaryMesh()[patchi];
+            if (!isA<wallPolyPatch>(pp) && !polyPatch::constraintType(pp.type()))
+            {
+                open.append(patchi);
+                names.append(pp.name());
+            }
+        }
+        openPatches_.transfer(open);
+        if (openPatches_.size())
+        {
+            leavingMesh_ = leaving::throughOpenPatches;
+        }
+        openPatchNames_.transfer(names);
+    }
     const dictionary* rd = dict.findDict("removal");
     if (!rd)
     {
@@ -48,6 +71,7 @@ Foam::immersedDEMStreams::immersedDEMStreams
                 << " { outlet { type box|cylinder|surface; ... } leavingMesh yes|no; }"
                 << nl << exit(FatalIOError);
         }
+        reportRemoval();
         return;
     }
     immersedDEMChecks::allowOnly(*rd, {"outlet", "leavingMesh"});
@@ -63,29 +87,102 @@ Foam::immersedDEMStreams::immersedDEMStreams
         }
         outlets_.push_back(immersedDEMInsertion::readRegion(*od, surfaceDir));
     }
-    leavingMesh_ = rd->getOrDefault<bool>("leavingMesh", false);
-    if (leavingMesh_ && !mesh_)
+    if (rd->found("leavingMesh"))
     {
-        FatalIOErrorInFunction(*rd)
-            << "Keyword 'leavingMesh' in " << rd->name() << ": the case has no"
-            << " mesh (constant/polyMesh) to leave; remove the keyword or give"
-            << " an 'outlet' region" << nl << exit(FatalIOError);
+        const bool all = rd->get<bool>("leavingMesh");
+        if (all && !mesh_)
+        {
+            FatalIOErrorInFunction(*rd)
+                << "Keyword 'leavingMesh' in " << rd->name() << ": the case has no"
+                << " mesh (constant/polyMesh) to leave; remove the keyword or give"
+                << " an 'outlet' region" << nl << exit(FatalIOError);
+        }
+        leavingMesh_ = all ? leaving::all : leaving::none;
     }
-    if (!outlets_.empty() || leavingMesh_)
+    reportRemoval();
+}
+
+
+void Foam::immersedDEMStreams::reportRemoval() const
+{
+    if (outlets_.empty() && leavingMesh_ == leaving::none)
     {
-        Info<< "    removal: bodies whose centre enters";
-        if (!outlets_.empty())
-        {
-            const axisAlignedBox b = outlets_[0].bounds();
-            Info<< " the outlet (bounds " << coreConversion::toFoam(b.min) << ' '
-                << coreConversion::toFoam(b.max) << ")";
-        }
-        if (leavingMesh_)
-        {
-            Info<< (outlets_.empty() ? "" : " or") << " no cell of the mesh";
-        }
-        Info<< " are removed" << endl;
+        return;
     }
+    Info<< "    removal: bodies whose centre";
+    if (!outlets_.empty())
+    {
+        const axisAlignedBox b = outlets_[0].bounds();
+        Info<< " enters the outlet (bounds " << coreConversion::toFoam(b.min) << ' '
+            << coreConversion::toFoam(b.max) << ")";
+    }
+    if (leavingMesh_ == leaving::all)
+    {
+        Info<< (outlets_.empty() ? "" : " or") << " is in no cell of the mesh";
+    }
+    else if (leavingMesh_ == leaving::throughOpenPatches)
+    {
+        Info<< (outlets_.empty() ? "" : " or") << " leaves the mesh through an open patch (";
+        forAll(openPatchNames_, k)
+        {
+            Info<< (k ? " " : "") << openPatchNames_[k];
+        }
+        Info<< "; the default: leavingMesh no makes it an error, yes removes"
+            << " bodies leaving anywhere)";
+    }
+    Info<< " are removed" << endl;
+}
+
+
+Foam::boolList Foam::immersedDEMStreams::nearestFaceOnPatches
+(
+    const polyMesh& mesh,
+    const labelList& patches,
+    const List<point>& points
+)
+{
+    // Each processor's nearest boundary face, then the nearest over all:
+    // the processor holding it says whether it is on one of the patches
+    // (brute force over the faces: only for the few bodies just outside)
+    const polyBoundaryMesh& bm = mesh.boundaryMesh();
+    boolList on(bm.size(), false);
+    for (const label patchi : patches) on[patchi] = true;
+    scalarList nearest(points.size(), GREAT);
+    labelList nearestPatch(points.size(), -1);
+    forAll(bm, patchi)
+    {
+        const polyPatch& pp = bm[patchi];
+        if (isA<processorPolyPatch>(pp)) continue;
+        forAll(pp, facei)
+        {
+            forAll(points, k)
+            {
+                const scalar d =
+                    pp[facei].nearestPoint(points[k], mesh.points()).distance();
+                if (d < nearest[k])
+                {
+                    nearest[k] = d;
+                    nearestPatch[k] = patchi;
+                }
+            }
+        }
+    }
+    scalarList globalNearest(nearest);
+    Pstream::listCombineGather(globalNearest, minEqOp<scalar>());
+    Pstream::listCombineScatter(globalNearest);
+    labelList onIt(points.size(), 0);
+    forAll(points, k)
+    {
+        if (nearestPatch[k] >= 0 && nearest[k] == globalNearest[k] && on[nearestPatch[k]])
+        {
+            onIt[k] = 1;
+        }
+    }
+    Pstream::listCombineGather(onIt, maxEqOp<label>());
+    Pstream::listCombineScatter(onIt);
+    boolList result(points.size());
+    forAll(result, k) result[k] = onIt[k] > 0;
+    return result;
 }
 
 
@@ -129,15 +226,31 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
     std::vector<int> gone = bodyRemoval::bodiesIn(dem, outlets_);
     std::vector<char> why(bodies.size(), 0);
     for (const int i : gone) why[i] = 1;
-    if (leavingMesh_)
+    if (leavingMesh_ != leaving::none)
     {
         const labelList in = inMesh(*mesh_, dem, why);
+        DynamicList<label> out;
+        DynamicList<point> centres;
         forAll(in, i)
         {
             if (!in[i])
             {
-                why[i] = 2;
-                gone.push_back(i);
+                out.append(i);
+                centres.append(coreConversion::toFoam(bodies[i].pose.position()));
+            }
+        }
+        // By default only those carried out through an open patch (one
+        // leaving through a wall stays the function object's error)
+        const boolList open =
+            leavingMesh_ == leaving::all || out.empty()
+          ? boolList(out.size(), true)
+          : nearestFaceOnPatches(*mesh_, openPatches_, centres);
+        forAll(out, k)
+        {
+            if (open[k])
+            {
+                why[out[k]] = 2;
+                gone.push_back(out[k]);
             }
         }
         std::sort(gone.begin(), gone.end());
