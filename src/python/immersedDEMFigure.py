@@ -24,11 +24,12 @@ def pyplot(script, checksFollow=True):
         import matplotlib.pyplot as plt
         return plt
     except ImportError as e:
+        other = "" if sys.executable == "/usr/bin/python3" else \
+            ", or run the script with a python that has it (e.g. /usr/bin/python3 %s)" % script
         sys.stderr.write(
             "%s: no figures written: the python running it (%s) cannot import matplotlib (%s). "
-            "Install it (Debian: apt-get install python3-matplotlib; or: %s -m pip install matplotlib), "
-            "or run the script with a python that has it (e.g. /usr/bin/python3 %s).%s\n"
-            % (script, sys.executable, e, sys.executable, script,
+            "Install it (Debian: apt-get install python3-matplotlib; or: %s -m pip install matplotlib)%s.%s\n"
+            % (script, sys.executable, e, sys.executable, other,
                " Its checks still run." if checksFollow else ""))
         sys.stderr.flush()
         return None

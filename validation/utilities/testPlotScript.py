@@ -67,10 +67,42 @@ check("plot of contacts.dat into the output folder", r.returncode == 0
 r = plot("-energy")
 check("kinetic energy plot", r.returncode == 0 and os.path.exists(os.path.join(out, "kineticEnergy.png")),
       r.stderr.strip())
+# A restart from 0.03 (its own folder, a column more: a newer version's
+# table) replaces the first run's rows from 0.03 on; the default plot joins
+# both runs, -time takes one
+rs = os.path.join(work, "postProcessing", "bodies", "0.03")
+os.makedirs(rs)
+with open(os.path.join(rs, "bodies.dat"), "w") as f:
+    f.write("# time body vz x y z vx vy m\n")
+    for i in range(3, 8):
+        t = 0.01 * i
+        f.write("%g ball %g 0 0 %g 0.1 0 0.002\n" % (t, -0.1 * t, 0.05 - t))
+from immersedDEMData import readRuns  # noqa: E402
+j = readRuns(os.path.join(work, "postProcessing", "bodies"))
+check("runs joined on their shared columns, the restart's rows from its start",
+      j.columns == ["time", "body", "vz", "x", "y", "z", "vx", "vy"]
+      and sorted(set(j["time"])) == [0.01 * i for i in range(8)]
+      and len(j.where(body="cube")) == 3, "%s, %d rows" % (j.columns, len(j)))
+r = plot("z")
+check("by default every run of the case is plotted (t 0 to 0.07)",
+      r.returncode == 0 and "t 0 to 0.07" in r.stdout, r.stdout.strip() + r.stderr.strip())
+r = plot("z", "-time", "0.03")
+check("-time: only that run", r.returncode == 0 and "t 0.03 to 0.07" in r.stdout and "5 rows" in r.stdout,
+      r.stdout.strip() + r.stderr.strip())
 r = plot("Fq")
 check("an unknown column: exit 1 naming it", r.returncode == 1 and "'Fq'" in r.stderr, r.stderr.strip())
 r = plot("z", "-name", "nothere")
 check("a missing output folder: exit 1 naming it", r.returncode == 1 and "nothere" in r.stderr, r.stderr.strip())
+
+# Without matplotlib: exit 1, naming what is missing and how to get it
+fake = os.path.join(work, "nompl")
+os.makedirs(fake)
+with open(os.path.join(fake, "matplotlib.py"), "w") as f:
+    f.write("raise ImportError('No module named matplotlib (test)')\n")
+r = subprocess.run([os.path.join(pyDir, "immersedDEMPlot"), "-case", work, "z"], capture_output=True, text=True,
+                   env=dict(os.environ, PYTHONPATH=fake))
+check("without matplotlib: exit 1 naming it and the remedy", r.returncode == 1
+      and "cannot import matplotlib" in r.stderr and "python3-matplotlib" in r.stderr, r.stderr.strip())
 
 print("%d failed" % len(fails))
 sys.exit(1 if fails else 0)
