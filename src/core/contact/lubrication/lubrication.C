@@ -310,6 +310,18 @@ mat3 lubrication::curvatureNear(const shape& S, const bodyPose& p, const vec3& x
     {
         return mat3::Zero();
     }
+    // A triangle surface's, continuous in x: its faces' own curvatures
+    // jump from face to face, and which face a point on an edge goes to
+    // is decided by round-off (serial and parallel runs of rings took
+    // different ones, and their films differed by 3%)
+    const surfaceDistance* d = nullptr;
+    if (const auto* m = shapeAs<triangleMeshShape>(S)) d = &m->distanceField();
+    else if (const auto* w = shapeAs<wallMeshShape>(S)) d = &w->distanceField();
+    if (d)
+    {
+        const mat3& R = p.rotation();
+        return R*d->smoothCurvature(p.toBody(x))*R.transpose();
+    }
     return S.closest(p, x).curvature;
 }
 

@@ -185,6 +185,35 @@ void surfaceDistance::computeCurvature
     }
     const double cosCrease = std::cos(creaseAngleDegrees*M_PI/180);
 
+    points_ = s.points;
+    pointFaces_.assign(s.points.size(), {});
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        for (int k = 0; k < 3; ++k) pointFaces_[s.faces[fi][k]].push_back(int(fi));
+    }
+    // The face across each edge: the one other face holding both points
+    faceAcross_.assign(nF, {-1, -1, -1});
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        const triFace& f = s.faces[fi];
+        for (int e = 0; e < 3; ++e)
+        {
+            const int a = f[e], b = f[(e + 1) % 3];
+            int across = -1, count = 0;
+            for (const int g : pointFaces_[a])
+            {
+                if (g == int(fi)) continue;
+                const triFace& fg = s.faces[g];
+                if (fg[0] == b || fg[1] == b || fg[2] == b)
+                {
+                    across = g;
+                    ++count;
+                }
+            }
+            faceAcross_[fi][e] = count == 1 ? across : -1;
+        }
+    }
+
     faceCurvature_.assign(nF, mat3::Zero());
     for (size_t fi = 0; fi < nF; ++fi)
     {
@@ -228,6 +257,79 @@ void surfaceDistance::computeCurvature
               + abc(2)*v*v.transpose();
         }
     }
+
+    // Each corner's: its point's faces on its face's side of a crease
+    cornerCurvature_.assign(nF, {mat3::Zero(), mat3::Zero(), mat3::Zero()});
+    for (size_t fi = 0; fi < nF; ++fi)
+    {
+        const vec3& nf = faceNormal_[fi];
+        for (int k = 0; k < 3; ++k)
+        {
+            mat3 sum = mat3::Zero();
+            double weight = 0;
+            for (const auto& gc : pointCorners[s.faces[fi][k]])
+            {
+                if (faceNormal_[gc.first].dot(nf) >= cosCrease)
+                {
+                    const double w = cornerAngle[gc.first][gc.second];
+                    sum += w*faceCurvature_[gc.first];
+                    weight += w;
+                }
+            }
+            cornerCurvature_[fi][k] = weight > 0 ? mat3(sum/weight) : faceCurvature_[fi];
+        }
+    }
+}
+
+
+mat3 surfaceDistance::smoothCurvature(const vec3& p) const
+{
+    const triangleBVH::hit h = bvh_.closest(p);
+    if (h.face < 0)
+    {
+        return mat3::Zero();
+    }
+    // On an edge or at a corner: of the faces meeting there, the one
+    // facing p most (the lowest index of equals)
+    int face = h.face;
+    const vec3 d = p - h.point;
+    if (h.feature != 0 && d.squaredNorm() > 0)
+    {
+        auto better = [&](const int g)
+        {
+            const double a = faceNormal_[g].dot(d), b = faceNormal_[face].dot(d);
+            if (a > b || (a == b && g < face)) face = g;
+        };
+        if (h.feature >= 4)
+        {
+            const int g = faceAcross_[h.face][h.feature - 4];
+            if (g >= 0) better(g);
+        }
+        else
+        {
+            for (const int g : pointFaces_[faces_[h.face][h.feature - 1]]) better(g);
+        }
+    }
+    // The closest point's barycentric weights in that face (it lies on
+    // it: on its edge or corner if it is another face than the hit's)
+    const triFace& f = faces_[face];
+    const vec3& a = points_[f[0]];
+    const vec3 e1 = points_[f[1]] - a, e2 = points_[f[2]] - a, q = h.point - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double q1 = q.dot(e1), q2 = q.dot(e2);
+    const double det = d11*d22 - d12*d12;
+    if (!(det > 0))
+    {
+        return faceCurvature_[face];
+    }
+    double w1 = std::clamp((d22*q1 - d12*q2)/det, 0.0, 1.0);
+    double w2 = std::clamp((d11*q2 - d12*q1)/det, 0.0, 1.0);
+    double w0 = std::max(0.0, 1 - w1 - w2);
+    const double sum = w0 + w1 + w2;
+    w0 /= sum;
+    w1 /= sum;
+    w2 /= sum;
+    return w0*cornerCurvature_[face][0] + w1*cornerCurvature_[face][1] + w2*cornerCurvature_[face][2];
 }
 
 
