@@ -61,8 +61,6 @@ DICT
  && foamDictionary -entry endTime -set 0.25 system/controlDict > /dev/null \
  && foamDictionary -entry writeControl -set adjustableRunTime system/controlDict > /dev/null \
  && foamDictionary -entry writeInterval -set 0.05 system/controlDict > /dev/null \
- && foamDictionary -entry bodies/surface -remove constant/fvOptions > /dev/null \
- && foamDictionary -entry bodies/penalty -remove constant/fvOptions > /dev/null \
  && blockMesh > log.blockMesh 2>&1
 ) || { echo "Could not make the case in $c (see $c/log.blockMesh)" 1>&2; exit 1; }
 cp -r "$c" "$work/A"
