@@ -30,6 +30,15 @@ Description
        mesh) 2.8 and 3.6 mm from two sides; the volume errors against the exact engine
        (the plane as a slab mesh).
 
+    4. A wall's rim on the domain's boundary (a channel's walls at its
+       outlet): the open box's top rim as an outlet, a 10 mm cube sliding
+       0.01 mm deep on a side wall while it crosses the rim (its top 7 mm
+       past it), and a sphere the same. The wall as read before (the rim
+       is rim: the octree measures it) against the wall continued across
+       the rim (immersedDEMPatchSurface marks such edges: exact planes),
+       side by side; volumes against the exact overlap with the side's
+       half-space (the cube against a slab mesh, CGAL).
+
     Sections 1 and 2 measure the octree itself (convexExact off: their
     cubes and icospheres are convex).
 
@@ -273,6 +282,66 @@ int main(int argc, char* argv[])
             std::printf("%-34s %12.1f %12.2f %9.0f %12.5e %+12.2e %+12.2e\n",
                 c.name, 1e6*median(tO), 1e6*median(tC), median(tO)/median(tC), c.exact,
                 vO/c.exact - 1, vC/c.exact - 1);
+        }
+    }
+
+    // 4. Crossing a wall's rim on the domain's boundary
+    {
+        std::printf("\nA wall's rim at an outlet: the rim as rim (octree) against the wall continued"
+            " across it (exact planes), median of %d alternating runs\n", repeats);
+        std::printf("%-34s %12s %12s %9s %12s %12s %12s\n",
+            "pair", "rim [us]", "continued", "ratio", "V exact", "rim err", "cont. err");
+        const vec3 lo(-0.0065, -0.0065, 0), hi(0.0935, 0.0935, 0.1);
+        const triangleSoup box = primitiveMeshes::openBox(lo, hi, 10);
+        std::vector<wallMeshShape::edge> top;
+        for (const triFace& f : box.faces)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                const int p = f[k], q = f[(k + 1)%3];
+                if (box.points[p].z() == hi.z() && box.points[q].z() == hi.z()) top.push_back({p, q});
+            }
+        }
+        const wallMeshShape rim(box, "rim", 0.02);
+        const wallMeshShape continued(box, "continued", 0.02, top);
+        // On the side x = lo, 0.01 mm deep, its top 7 mm past the outlet
+        const bodyPose cubePose =
+            cubeB.poseFromFilePlacement(quat::Identity(), vec3(lo.x() + a - 1e-5, 0.04, hi.z() - 0.3*a));
+        const sphereShape ball(a);
+        const bodyPose ballPose(vec3(lo.x() + a - 1e-5, 0.04, hi.z() - 0.3*a), quat::Identity());
+        // The side's half-space as a slab mesh, for the exact engine
+        triangleSoup slabSoup = primitiveMeshes::box(vec3(0.05, 0.1, 0.1));
+        primitiveMeshes::transform(slabSoup, mat3::Identity(), vec3(lo.x() - 0.05, 0.04, 0.1));
+        const triangleMeshShape slab(slabSoup, "slab");
+        const bodyPose slabPose = slab.poseFromFilePlacement(quat::Identity(), vec3::Zero());
+        const double exactCube = exactOverlap().evaluate(slab, slabPose, cubeB, cubePose, {}).volume();
+        const double t = 1e-5, exactBall = M_PI*t*t*(3*a - t)/3;     // the cap
+        struct rimCase { const char* name; const shape* B; bodyPose pB; double exact; };
+        for (const rimCase& c : std::vector<rimCase>
+        {
+            {"cube on a side, across the outlet", &cubeB, cubePose, exactCube},
+            {"sphere on a side, across the outlet", &ball, ballPose, exactBall}
+        })
+        {
+            const overlapSettings defaults{h, 4};
+            std::vector<double> tR, tC;
+            double vR = 0, vC = 0;
+            const int inner = 100;
+            for (int r = 0; r < repeats; ++r)
+            {
+                auto t0 = std::chrono::steady_clock::now();
+                vR = vm.evaluate(rim, bodyPose(), *c.B, c.pB, defaults).volume();
+                tR.push_back(seconds(t0));
+                t0 = std::chrono::steady_clock::now();
+                for (int k = 0; k < inner; ++k)
+                {
+                    vC = vm.evaluate(continued, bodyPose(), *c.B, c.pB, defaults).volume();
+                }
+                tC.push_back(seconds(t0)/inner);
+            }
+            std::printf("%-34s %12.1f %12.2f %9.0f %12.5e %+12.2e %+12.2e\n",
+                c.name, 1e6*median(tR), 1e6*median(tC), median(tR)/median(tC), c.exact,
+                vR/c.exact - 1, vC/c.exact - 1);
         }
     }
     return 0;

@@ -14,6 +14,12 @@
 
 #include "testHelpers.H"
 
+#include "demOutput.H"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -282,9 +288,42 @@ TEST(BodyRemoval, OutletRemovesBodiesAndTheirContacts)
         EXPECT_LT(c.a, 3);
         EXPECT_LT(c.b, 3);
     }
+    // Each keeps its identity (the output's body number): the order it
+    // was added in, the floor first
+    EXPECT_EQ(dem.identity(1), 2u);
+    EXPECT_EQ(dem.identity(2), 3u);
+    EXPECT_EQ(dem.nextIdentity(), 4u);
     // Nothing to remove: nothing changes
     EXPECT_EQ(dem.removeBodies({}), std::vector<int>({0, 1, 2}));
     EXPECT_EQ(dem.bodies()[2].name, "s2");
     EXPECT_THROW(dem.removeBodies({0}), coreError);
     EXPECT_THROW(dem.removeBodies({7}), coreError);
+
+    // A restart gives them back the identities of the run it continues,
+    // and the VTK output numbers each body by it
+    rigidBody late("s9", std::make_shared<sphereShape>(0.01), 2500, 0);
+    late.pose = bodyPose(vec3(0.05, 0, 0.0099), quat::Identity());
+    dem.addBody(std::move(late));
+    EXPECT_EQ(dem.identity(3), 4u);
+    dem.restoreIdentities({0, 2, 3, 9}, 10);
+    EXPECT_EQ(dem.identity(3), 9u);
+    EXPECT_EQ(dem.nextIdentity(), 10u);
+    EXPECT_THROW(dem.restoreIdentities({0, 2, 3}, 10), coreError);       // one short
+    EXPECT_THROW(dem.restoreIdentities({0, 2, 2, 9}, 10), coreError);    // twice
+    EXPECT_THROW(dem.restoreIdentities({0, 2, 3, 9}, 9), coreError);     // not below next
+    EXPECT_EQ(dem.identity(3), 9u);     // a refused call changes nothing
+    const std::string dir = ::testing::TempDir() + "/bodyNumbers";
+    std::filesystem::remove_all(dir);
+    demOutput out(dir, "0");
+    out.writeVTK(0.5, dem);
+    std::ifstream vtk(dir + "/VTK/bodies_0.5.vtk");
+    ASSERT_TRUE(vtk.good());
+    std::string line;
+    while (std::getline(vtk, line) && line != "LOOKUP_TABLE default") {}
+    std::map<int, int> facesOf;
+    for (int b; vtk >> b;) ++facesOf[b];
+    // The three spheres' faces under 2, 3 and 9 (the floor is not drawn)
+    ASSERT_EQ(facesOf.size(), 3u);
+    EXPECT_EQ(facesOf.begin()->first, 2);
+    EXPECT_EQ(facesOf.rbegin()->first, 9);
 }

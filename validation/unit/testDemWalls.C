@@ -135,3 +135,78 @@ TEST(demWalls, flatPartOfAMeshWallGivesTheExactCap)
     const wallMeshShape open(plate, "plate", 0.02);
     EXPECT_FALSE(open.flatNear(vec3(0, 0, R - 1e-4), R, x, n));
 }
+
+
+// A channel's walls end at its outlet: there the wall's rim lies on the
+// domain's boundary, which turns to the fluid's side (the outlet is at a
+// right angle to the walls). Told so (the reader's 'continued' edges),
+// the walls are extended across it: a ball crossing the outlet on the floor
+// gets the exact cap, and at the floor's corner with a side wall the
+// planes of both. Not told, the rim is the rim (the octree measures it)
+TEST(demWalls, wallContinuedAcrossAnOutletGivesTheExactCap)
+{
+    // A box tank, normals inward, without its x = +0.05 side (the outlet)
+    const triangleSoup box = primitiveMeshes::box(vec3(0.05, 0.05, 0.05));
+    triangleSoup channel;
+    channel.points = box.points;
+    for (triFace f : box.faces)
+    {
+        bool outlet = true;
+        for (const int v : f) outlet = outlet && box.points[v].x() > 0.05 - 1e-12;
+        std::swap(f[1], f[2]);
+        if (!outlet) channel.faces.push_back(f);
+    }
+    ASSERT_EQ(channel.faces.size(), 10u);
+    std::vector<wallMeshShape::edge> rim;
+    for (const triFace& f : channel.faces)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const int a = f[k], b = f[(k + 1)%3];
+            if (box.points[a].x() > 0.05 - 1e-12 && box.points[b].x() > 0.05 - 1e-12)
+            {
+                rim.push_back({a, b});
+            }
+        }
+    }
+    ASSERT_EQ(rim.size(), 4u);      // the outlet's four edges
+    const wallMeshShape open(channel, "channel", 0.02);
+    const wallMeshShape continued(channel, "channel", 0.02, rim);
+    EXPECT_EQ(open.openFaces() != nullptr, true);
+    EXPECT_EQ(continued.openFaces(), nullptr);
+
+    // A ball on the floor, its centre 0.3 R inside the outlet, 0.1 mm deep
+    const sphereShape ball(R);
+    const bodyPose pw;
+    const bodyPose pb(vec3(0.05 - 0.3*R, 0.002, -0.05 + R - 1e-4), quat::Identity());
+    vec3 x, n;
+    EXPECT_FALSE(open.flatNear(pb.position(), R, x, n));
+    ASSERT_TRUE(continued.flatNear(pb.position(), R, x, n));
+    EXPECT_NEAR(n.z(), 1, 1e-12);
+    const auto engine = overlapEngine::New("virtualMesh");
+    const contactGeometry g = engine->evaluate(continued, pw, ball, pb, {2*R/20, 4});
+    const contactGeometry exact = sphereOverlap::cap(vec3(0, 0, -0.05), vec3::UnitZ(), pb.position(), R);
+    ASSERT_EQ(g.regions.size(), 1u);
+    // Exact: the same cap to round-off (1e-12 of it)
+    EXPECT_NEAR(g.regions[0].volume, exact.regions[0].volume, 1e-12*exact.regions[0].volume);
+
+    // In the floor's corner with the side wall y = -0.05, at the outlet:
+    // two planes, the tank's convex inside
+    std::vector<wallMeshShape::plane> planes;
+    const vec3 corner(0.05 - 0.3*R, -0.05 + 0.8*R, -0.05 + 0.8*R);
+    EXPECT_FALSE(open.convexFluidNear(corner, R, planes));
+    ASSERT_TRUE(continued.convexFluidNear(corner, R, planes));
+    EXPECT_EQ(planes.size(), 2u);
+
+    // Away from the outlet both are the same closed tank
+    const vec3 far(-0.02, 0.003, -0.05 + R - 1e-4);
+    EXPECT_TRUE(open.flatNear(far, R, x, n));
+    EXPECT_TRUE(continued.flatNear(far, R, x, n));
+
+    // An edge that is not on the rim cannot be continued
+    EXPECT_THROW
+    (
+        wallMeshShape(channel, "channel", 0.02, {{channel.faces[0][0], channel.faces[0][1]}}),
+        coreError
+    );
+}

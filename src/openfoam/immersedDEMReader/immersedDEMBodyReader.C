@@ -353,11 +353,16 @@ rigidBody Foam::immersedDEMReaders::readWall
         }
         try
         {
-            geometry = std::make_shared<wallMeshShape>
-            (
-                immersedDEMPatchSurface::of(*mesh, d, name, &patchOfFace),
-                name, thickness
-            );
+            std::vector<wallMeshShape::edge> continued;
+            triangleSoup s =
+                immersedDEMPatchSurface::of(*mesh, d, name, &patchOfFace, &continued);
+            geometry = std::make_shared<wallMeshShape>(std::move(s), name, thickness, continued);
+            if (!continued.empty())
+            {
+                Info<< "    wall " << name << ": continued across " << continued.size()
+                    << " edges where it meets the rest of the boundary at an angle"
+                    << " (exact flat contacts up to them)" << endl;
+            }
         }
         catch (const coreError& err)
         {

@@ -2,6 +2,7 @@
 #include "Pstream.H"
 #include "immersedDEMPeriodic.H"
 #include "wordRes.H"
+#include "SubField.H"
 #include <algorithm>
 #include <map>
 #include <tuple>
@@ -20,7 +21,8 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     const polyMesh& mesh,
     const dictionary& d,
     const word& name,
-    std::vector<label>* patchOfFace
+    std::vector<label>* patchOfFace,
+    std::vector<std::array<int, 2>>* continued
 )
 {
     const wordRes selection(d.get<wordRes>("patches"));
@@ -51,6 +53,30 @@ triangleSoup Foam::immersedDEMPatchSurface::of
             }
         }
     }
+    // The rest of the boundary where it meets a patch's edge: each edge of
+    // an unselected, uncoupled patch's own boundary, as its two points and
+    // its face's centre (which side the boundary turns to)
+    DynamicList<point> rest;
+    for (const polyPatch& pp : mesh.boundaryMesh())
+    {
+        if (ids.found(pp.index()) || pp.coupled()) continue;
+        const edgeList& edges = pp.edges();
+        const pointField& local = pp.localPoints();
+        for (label e = pp.nInternalEdges(); e < edges.size(); ++e)
+        {
+            for (const label fi : pp.edgeFaces()[e])
+            {
+                rest.append(local[edges[e].start()]);
+                rest.append(local[edges[e].end()]);
+                rest.append(pp.faceCentres()[fi]);
+            }
+        }
+    }
+    List<pointField> allRest(Pstream::nProcs());
+    allRest[Pstream::myProcNo()] = rest;
+    Pstream::gatherList(allRest);
+    Pstream::scatterList(allRest);
+
     List<pointField> all(Pstream::nProcs());
     all[Pstream::myProcNo()] = mine;
     Pstream::gatherList(all);
@@ -145,6 +171,60 @@ triangleSoup Foam::immersedDEMPatchSurface::of
         }
         s.faces.push_back(f);
         if (patchOfFace) patchOfFace->push_back(patchi);
+    }
+    if (continued)
+    {
+        continued->clear();
+        // The faces of the rest of the boundary at each of its edges (by
+        // the points' coordinates: the same on every processor)
+        std::map<std::pair<key, key>, std::vector<point>> restAt;
+        const auto edgeKey = [](const point& a, const point& b)
+        {
+            key ka{a.x(), a.y(), a.z()}, kb{b.x(), b.y(), b.z()};
+            return ka < kb ? std::make_pair(ka, kb) : std::make_pair(kb, ka);
+        };
+        for (const pointField& part : allRest)
+        {
+            for (label i = 0; i + 2 < part.size(); i += 3)
+            {
+                restAt[edgeKey(part[i], part[i + 1])].push_back(part[i + 2]);
+            }
+        }
+        std::map<std::pair<int, int>, int> uses;
+        for (const immersedDEM::triFace& f : s.faces)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                ++uses[{std::min(f[k], f[(k + 1)%3]), std::max(f[k], f[(k + 1)%3])}];
+            }
+        }
+        for (const immersedDEM::triFace& f : s.faces)
+        {
+            const vec3 n =
+                (s.points[f[1]] - s.points[f[0]]).cross(s.points[f[2]] - s.points[f[0]]).normalized();
+            for (int k = 0; k < 3; ++k)
+            {
+                const int a = f[k], b = f[(k + 1)%3];
+                if (uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
+                const vec3& pa = s.points[a];
+                const vec3& pb = s.points[b];
+                const auto it = restAt.find
+                (
+                    edgeKey(point(pa.x(), pa.y(), pa.z()), point(pb.x(), pb.y(), pb.z()))
+                );
+                if (it == restAt.end()) continue;   // inside the fluid: a baffle
+                // Every face there turns to the fluid's side, clearly
+                // (1e-6 of its size: an outlet in the wall's own plane,
+                // or a baffle's other side, is not)
+                bool turns = true;
+                for (const point& c : it->second)
+                {
+                    const vec3 q = vec3(c.x(), c.y(), c.z()) - pa;
+                    turns = turns && n.dot(q) > 1e-6*q.norm();
+                }
+                if (turns) continued->push_back({a, b});
+            }
+        }
     }
     return s;
 }

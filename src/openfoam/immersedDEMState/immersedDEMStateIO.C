@@ -6,6 +6,7 @@
 #include "immersedDEMState.H"
 #include "coreConversion.H"
 #include "restartEntries.H"
+#include "coreError.H"
 #include "OFstream.H"
 #include "IFstream.H"
 #include "OSspecific.H"
@@ -42,12 +43,16 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
         // Whether the next DEM step kicks with the loads below, as written
         // (no: bodies entered or left in the step, and it computes them)
         os.writeEntry("loadsCurrent", Switch(dem_->loadsCurrent()));
+        // The identity the next body added gets (demSolver::identity)
+        os.writeEntry("nextIdentity", label(dem_->nextIdentity()));
         os  << nl << "bodies" << nl << token::BEGIN_BLOCK << incrIndent << nl;
         forAll(dem_->bodies(), i)
         {
             const rigidBody& b = dem_->bodies()[i];
             const quat& q = b.pose.orientation();
             os.beginBlock(word(b.name));
+            // Its number in the output (VTK's body field)
+            os.writeEntry("identity", label(dem_->identity(i)));
             os.writeEntry("position", v(b.pose.position()));
             if (dem_->periodic().active())
             {
@@ -200,6 +205,10 @@ bool Foam::immersedDEMState::readRestart()
     const dictionary& bd = dict.subDict("bodies");
     // (states written before it have none: the DEM computes the loads)
     loadsRestored_ = dict.getOrDefault<Switch>("loadsCurrent", false);
+    // The bodies' numbers in the output (states written before them have
+    // none: numbered in the order the bodies were added again)
+    std::vector<std::uint64_t> identities;
+    const bool numbered = dict.found("nextIdentity");
     forAll(bodies, i)
     {
         rigidBody& b = bodies[i];
@@ -213,6 +222,7 @@ bool Foam::immersedDEMState::readRestart()
                 << exit(FatalIOError);
         }
         const dictionary& d = *dp;
+        if (numbered) identities.push_back(d.get<label>("identity"));
         const List<scalar> q(d.get<List<scalar>>("orientation"));
         if (q.size() != 4)
         {
@@ -279,6 +289,21 @@ bool Foam::immersedDEMState::readRestart()
         loadsRestored_ = loadsRestored_ && loads == 4;
         if (d.readIfPresent("externalForce", F)) b.externalForce = c(F);
         if (d.readIfPresent("externalTorque", F)) b.externalTorque = c(F);
+    }
+    if (numbered)
+    {
+        try
+        {
+            dem_->restoreIdentities(identities, dict.get<label>("nextIdentity"));
+        }
+        catch (const coreError& err)
+        {
+            FatalIOErrorInFunction(bd)
+                << "The bodies' keyword 'identity' in " << file << ": " << err.what()
+                << " (the file was edited, or written by another run): remove"
+                << " 'nextIdentity' to number the bodies afresh" << nl
+                << exit(FatalIOError);
+        }
     }
 
     std::map<std::pair<int, int>, std::vector<contactHistory>> histories;

@@ -167,7 +167,7 @@ void demOutput::writeVTK(double time, const demSolver& dem)
         for (const triFace& f : s.faces)
         {
             faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
-            bodyOfFace.push_back(int(i));
+            bodyOfFace.push_back(int(dem.identity(int(i))));
         }
     }
 

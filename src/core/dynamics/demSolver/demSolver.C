@@ -126,6 +126,38 @@ int demSolver::addBody(rigidBody b, bool wall)
 }
 
 
+void demSolver::restoreIdentities
+(
+    const std::vector<std::uint64_t>& identities, std::uint64_t next
+)
+{
+    if (identities.size() != bodies_.size())
+    {
+        throw coreError
+        (
+            "restoreIdentities: " + std::to_string(identities.size()) + " identities for "
+          + std::to_string(bodies_.size()) + " bodies"
+        );
+    }
+    std::vector<std::uint64_t> sorted(identities);
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    {
+        throw coreError("restoreIdentities: two bodies have the same identity");
+    }
+    if (!sorted.empty() && sorted.back() >= next)
+    {
+        throw coreError
+        (
+            "restoreIdentities: identity " + std::to_string(sorted.back())
+          + " is not below the next one, " + std::to_string(next)
+        );
+    }
+    identity_ = identities;
+    nextIdentity_ = next;
+}
+
+
 std::vector<int> demSolver::removeBodies(const std::vector<int>& indices)
 {
     const int n = int(bodies_.size());

@@ -29,7 +29,8 @@ wallMeshShape::wallMeshShape
 (
     triangleSoup surface,
     const std::string& name,
-    double thickness
+    double thickness,
+    const std::vector<edge>& continued
 )
 :
     shape(staticKind),
@@ -61,6 +62,20 @@ wallMeshShape::wallMeshShape
             ++edgeUses[{std::min(a, b), std::max(a, b)}];
         }
     }
+    for (const edge& e : continued)
+    {
+        // Used once: on the rim, and now known to be continued (marked 0)
+        const auto it = edgeUses.find({std::min(e[0], e[1]), std::max(e[0], e[1])});
+        if (it == edgeUses.end() || it->second != 1)
+        {
+            throw coreError
+            (
+                "Wall surface \"" + name + "\": an edge said to be continued"
+                " is not on the surface's rim"
+            );
+        }
+        it->second = 0;
+    }
     onRim_.assign(surface_.faces.size(), 0);
     std::vector<char> openVertex(surface_.points.size(), 0);
     for (size_t fi = 0; fi < surface_.faces.size(); ++fi)
@@ -71,10 +86,12 @@ wallMeshShape::wallMeshShape
             const int a = f[k], b = f[(k + 1)%3];
             const int uses = edgeUses[{std::min(a, b), std::max(a, b)}];
             if (uses == 1) onRim_[fi] = 1;
-            if (uses != 2) openVertex[a] = openVertex[b] = 1;
+            if (uses != 2 && uses != 0) openVertex[a] = openVertex[b] = 1;
         }
     }
-    // The faces at a vertex of an open (or non-manifold) edge
+    // The faces at a vertex of an open (or non-manifold) edge. Near a
+    // continued edge the pseudo-normal sign is that of the continued wall
+    // (the boundary turns to the fluid's side there), as for a closed one
     triangleSoup open;
     open.points = surface_.points;
     for (const triFace& f : surface_.faces)
