@@ -23,6 +23,7 @@ bool sealsBodies(const fvPatchVectorField& Ub)
 }
 
 constexpr auto v = &coreConversion::toFoam;
+constexpr auto c = &coreConversion::toCore;
 
 //- The pressure around each body: a linear fit p0 + G.(x - c) of the
 //  pressures of the fluid cells next to its forced cells, over the faces
@@ -156,7 +157,11 @@ Foam::bodyFluidSums::bodyFluidSums
 )
 {
     const label n = dem.bodies().size();
-    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    for
+    (
+        List<vector>* l
+      : {&penalty, &penaltyMoment, &momentum, &angularMomentum, &outflow, &angularOutflow}
+    )
     {
         l->setSize(n);
         *l = Zero;
@@ -197,12 +202,64 @@ Foam::bodyFluidSums::bodyFluidSums
             angularMomentum[j] += rj ^ mj;
         }
     }
+    // The inner fluid leaving the mesh (or entering it) through the
+    // boundary faces of the bodies' cells that are not coupled: each
+    // face's flux times the part of the face inside the body. That part
+    // is the face's own, not its cell's lambda: a body entering the
+    // outlet's cells from upstream covers none of the outlet yet, and
+    // lambda would count its outflow half a cell early (the body pushed
+    // out by rho U^2 A h/2: +10% of its speed at 8 cells per diameter).
+    // It ramps over the face's size across the surface (signed distance
+    // of the face centre), so that it grows smoothly as the surface
+    // crosses the face
+    if (const surfaceScalarField* phi = mesh.findObject<surfaceScalarField>("phi"))
+    {
+        const polyBoundaryMesh& patches = mesh.boundaryMesh();
+        const auto inside = [&](const label i, const point& x, const scalar size)
+        {
+            const rigidBody& b = dem.bodies()[i];
+            const scalar d = b.geometry->signedDistance(b.pose, c(x));
+            return min(max(0.5 - d/size, scalar(0)), scalar(1));
+        };
+        forAll(patches, patchi)
+        {
+            const polyPatch& pp = patches[patchi];
+            if (pp.coupled()) continue;
+            const scalarField& phiP = phi->boundaryField()[patchi];
+            const vectorField& UP = U.boundaryField()[patchi];
+            const vectorField& CfP = mesh.Cf().boundaryField()[patchi];
+            const scalarField& magSfP = mesh.magSf().boundaryField()[patchi];
+            const labelUList& faceCells = pp.faceCells();
+            forAll(faceCells, k)
+            {
+                if (phiP[k] == 0) continue;
+                const label celli = faceCells[k];
+                const scalar size = std::sqrt(magSfP[k]);
+                for (const bool second : {false, true})
+                {
+                    const label i = second ? secondOf[celli] : bodyOf[celli];
+                    if (i < 0) continue;
+                    const point x = CfP[k]
+                      - (second ? projection.secondShift(celli) : projection.bodyShift(celli));
+                    const scalar f = inside(i, x, size);
+                    if (f <= 0) continue;
+                    const vector m = f*phiP[k]*UP[k];
+                    outflow[i] += m;
+                    angularOutflow[i] += (x - v(dem.bodies()[i].pose.position())) ^ m;
+                }
+            }
+        }
+    }
     const volScalarField* p = mesh.findObject<volScalarField>(pName);
     if (deltaT > 0 && p)
     {
         removeSealedFacePressure(projection, dem, U, deltaT, *p);
     }
-    for (List<vector>* l : {&penalty, &penaltyMoment, &momentum, &angularMomentum})
+    for
+    (
+        List<vector>* l
+      : {&penalty, &penaltyMoment, &momentum, &angularMomentum, &outflow, &angularOutflow}
+    )
     {
         immersedDEMParallel::sumOverProcessors(*l);
     }

@@ -145,10 +145,13 @@ void Foam::immersedFluidCoupling::fluidLoads
         const immersedForcing::timeDerivative ddt = second
             ? immersedForcing::timeDerivative::backward(deltaT, previousDeltaT_)
             : immersedForcing::timeDerivative::euler(deltaT);
+        // (with what of it left the mesh: a body crossing an outlet)
         const vec3 innerRate =
-            ddt.of(c(M[i]), mem.innerMomentum, mem.innerMomentum0);
+            ddt.of(c(M[i]), mem.innerMomentum, mem.innerMomentum0)
+          + c(sums.outflow[i]);
         const vec3 innerAngularRate =
-            ddt.of(c(L[i]), mem.innerAngularMomentum, mem.innerAngularMomentum0);
+            ddt.of(c(L[i]), mem.innerAngularMomentum, mem.innerAngularMomentum0)
+          + c(sums.angularOutflow[i]);
         const vec3 F = immersedForcing::fluidForce
         (
             rho, c(P[i]), innerRate, Vb, dem.settings().gravity
