@@ -40,6 +40,23 @@ double restingHeight(demSolver& dem, double z0)
     return dem.bodies()[i].pose.position().z();
 }
 
+// A ball at pb 0.1 mm into the floor z = -0.05 of wall w: w is flat
+// there, and the virtual mesh gives the exact cap (to round-off, 1e-12
+// of it) with the floor's normal
+void expectFloorCap(const wallMeshShape& w, const bodyPose& pb)
+{
+    vec3 x, n;
+    ASSERT_TRUE(w.flatNear(pb.position(), R, x, n));
+    EXPECT_NEAR(n.z(), 1, 1e-12);
+    const sphereShape ball(R);
+    const auto engine = overlapEngine::New("virtualMesh");
+    const contactGeometry g = engine->evaluate(w, bodyPose(), ball, pb, {2*R/20, 4});
+    const contactGeometry exact = sphereOverlap::cap(vec3(0, 0, -0.05), vec3::UnitZ(), pb.position(), R);
+    ASSERT_EQ(g.regions.size(), 1u);
+    EXPECT_NEAR(g.regions[0].volume, exact.regions[0].volume, 1e-12*exact.regions[0].volume);
+    EXPECT_NEAR(g.regions[0].normal.z(), 1, 1e-12);
+}
+
 } // End anonymous namespace
 
 
@@ -113,15 +130,9 @@ TEST(demWalls, flatPartOfAMeshWallGivesTheExactCap)
     // The box spans -0.05..0.05; a ball sinking 0.1 mm into its floor
     const bodyPose pw;
     const bodyPose pb(vec3(0.003, -0.002, -0.05 + R - 1e-4), quat::Identity());
-    vec3 x, n;
-    ASSERT_TRUE(wall.flatNear(pb.position(), R, x, n));
-    EXPECT_NEAR(n.z(), 1, 1e-12);
+    expectFloorCap(wall, pb);
     const auto engine = overlapEngine::New("virtualMesh");
-    const contactGeometry g = engine->evaluate(wall, pw, ball, pb, {2*R/20, 4});
-    const contactGeometry exact = sphereOverlap::cap(vec3(0, 0, -0.05), vec3::UnitZ(), pb.position(), R);
-    ASSERT_EQ(g.regions.size(), 1u);
-    EXPECT_NEAR(g.regions[0].volume, exact.regions[0].volume, 1e-12*exact.regions[0].volume);
-    EXPECT_NEAR(g.regions[0].normal.z(), 1, 1e-12);
+    vec3 x, n;
     // Swapped: the normal turns
     const contactGeometry s = engine->evaluate(ball, pb, wall, pw, {2*R/20, 4});
     EXPECT_NEAR(s.regions[0].normal.z(), -1, 1e-12);
@@ -176,19 +187,10 @@ TEST(demWalls, wallContinuedAcrossAnOutletGivesTheExactCap)
     EXPECT_EQ(continued.openFaces(), nullptr);
 
     // A ball on the floor, its centre 0.3 R inside the outlet, 0.1 mm deep
-    const sphereShape ball(R);
-    const bodyPose pw;
     const bodyPose pb(vec3(0.05 - 0.3*R, 0.002, -0.05 + R - 1e-4), quat::Identity());
     vec3 x, n;
     EXPECT_FALSE(open.flatNear(pb.position(), R, x, n));
-    ASSERT_TRUE(continued.flatNear(pb.position(), R, x, n));
-    EXPECT_NEAR(n.z(), 1, 1e-12);
-    const auto engine = overlapEngine::New("virtualMesh");
-    const contactGeometry g = engine->evaluate(continued, pw, ball, pb, {2*R/20, 4});
-    const contactGeometry exact = sphereOverlap::cap(vec3(0, 0, -0.05), vec3::UnitZ(), pb.position(), R);
-    ASSERT_EQ(g.regions.size(), 1u);
-    // Exact: the same cap to round-off (1e-12 of it)
-    EXPECT_NEAR(g.regions[0].volume, exact.regions[0].volume, 1e-12*exact.regions[0].volume);
+    expectFloorCap(continued, pb);
 
     // In the floor's corner with the side wall y = -0.05, at the outlet:
     // two planes, the tank's convex inside
