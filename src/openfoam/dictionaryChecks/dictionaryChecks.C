@@ -1,4 +1,5 @@
 #include "dictionaryChecks.H"
+#include "Time.H"
 #include "IOstreams.H"
 #include "IFstream.H"
 #include "OSspecific.H"
@@ -272,4 +273,10 @@ const Foam::dictionary& Foam::immersedDEMChecks::subDictEntry
             << exit(FatalIOError);
     }
     return e.dict();
+}
+
+
+Foam::fileName Foam::immersedDEMChecks::caseFile(const IOobject& io)
+{
+    return io.time().globalPath()/io.instance()/io.local()/io.name();
 }

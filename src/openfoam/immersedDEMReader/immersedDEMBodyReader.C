@@ -356,12 +356,29 @@ rigidBody Foam::immersedDEMReaders::readWall
             std::vector<wallMeshShape::edge> continued;
             triangleSoup s =
                 immersedDEMPatchSurface::of(*mesh, d, name, &patchOfFace, &continued);
+            // The rim: edges of one triangle only
+            std::map<std::pair<int, int>, int> uses;
+            for (const immersedDEM::triFace& f : s.faces)
+            {
+                for (int k = 0; k < 3; ++k)
+                {
+                    ++uses[{std::min(f[k], f[(k + 1)%3]), std::max(f[k], f[(k + 1)%3])}];
+                }
+            }
+            label rim = 0;
+            for (const auto& e : uses) rim += (e.second == 1);
             geometry = std::make_shared<wallMeshShape>(std::move(s), name, thickness, continued);
-            if (!continued.empty())
+            if (rim > 0)
             {
                 Info<< "    wall " << name << ": continued across " << continued.size()
-                    << " edges where it meets the rest of the boundary at an angle"
-                    << " (exact flat contacts up to them)" << endl;
+                    << " of its " << rim << " rim edges, where it meets the rest of"
+                    << " the boundary at an angle (exact flat contacts up to them)";
+                if (label(continued.size()) < rim)
+                {
+                    Info<< "; it ends at the other " << rim - label(continued.size())
+                        << " (an opening in its own plane, a baffle's edge)";
+                }
+                Info<< endl;
             }
         }
         catch (const coreError& err)

@@ -1,4 +1,5 @@
 #include "immersedDEMState.H"
+#include "dictionaryChecks.H"
 #include "immersedDEMReader.H"
 #include "uniformDimensionedFields.H"
 #include "coreConversion.H"
@@ -49,7 +50,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         ),
         dimensionedVector(dimAcceleration, Zero)
     );
-    Info<< "immersedDEM: reading " << properties_.objectPath() << endl;
+    Info<< "immersedDEM: reading " << immersedDEMChecks::caseFile(properties_) << endl;
     const fileName surfaceDir = mesh.time().globalPath()/mesh.time().constant()/"triSurface";
     std::vector<bodyStream> streams;
     dem_ = immersedDEMReader::read
@@ -78,7 +79,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
     restarted_ = readRestart();
     if (!restarted_)
     {
-        immersedDEMReader::initialOverlaps(*dem_, properties_.objectPath());
+        immersedDEMReader::initialOverlaps(*dem_, immersedDEMChecks::caseFile(properties_));
         immersedDEMReader::reportMessages(*dem_);
     }
     if (!restarted_ && streams_->active())
@@ -112,7 +113,7 @@ Foam::immersedDEMState::immersedDEMState(const fvMesh& mesh)
         )
         {
             WarningInFunction
-                << "Body '" << b.name << "' of " << properties_.objectPath()
+                << "Body '" << b.name << "' of " << immersedDEMChecks::caseFile(properties_)
                 << " lies mostly outside the mesh (projected "
                 << projectedVolume[i]/b.geometry->volume()
                 << " of its volume): the fluid does not see it there" << endl;

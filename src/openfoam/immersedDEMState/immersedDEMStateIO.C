@@ -4,6 +4,7 @@
 // uninterrupted one)
 
 #include "immersedDEMState.H"
+#include "dictionaryChecks.H"
 #include "coreConversion.H"
 #include "restartEntries.H"
 #include "coreError.H"
@@ -132,7 +133,7 @@ bool Foam::immersedDEMState::readRestart()
 
     if (!properties_.getOrDefault<bool>("restart", true))
     {
-        Info<< "immersedDEM: restart no in " << properties_.objectPath()
+        Info<< "immersedDEM: restart no in " << immersedDEMChecks::caseFile(properties_)
             << ": the bodies start afresh from it at time " << runTime.timeName();
         if (returnReduce(found, orOp<bool>()))
         {
@@ -165,7 +166,7 @@ bool Foam::immersedDEMState::readRestart()
                 << " fields), or the file was removed." << nl
                 << "Restart from an earlier time that has it (remove "
                 << timePath.name() << " or set startTime), or put 'restart no;'"
-                << " in " << properties_.objectPath() << " to start the bodies"
+                << " in " << immersedDEMChecks::caseFile(properties_) << " to start the bodies"
                 << " afresh from that file at time " << runTime.timeName() << nl
                 << exit(FatalIOError);
         }
@@ -196,7 +197,7 @@ bool Foam::immersedDEMState::readRestart()
         {
             FatalIOErrorInFunction(d)
                 << "Keyword '" << key << "' in " << d.name() << ": no body or wall '"
-                << name << "' in " << properties_.objectPath() << nl
+                << name << "' in " << immersedDEMChecks::caseFile(properties_) << nl
                 << exit(FatalIOError);
         }
         return it->second;
@@ -217,7 +218,7 @@ bool Foam::immersedDEMState::readRestart()
         {
             FatalIOErrorInFunction(bd)
                 << "No state for body '" << b.name << "' in " << file
-                << ": the bodies of " << properties_.objectPath()
+                << ": the bodies of " << immersedDEMChecks::caseFile(properties_)
                 << " must be those of the run that wrote it" << nl
                 << exit(FatalIOError);
         }

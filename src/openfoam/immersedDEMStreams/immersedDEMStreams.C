@@ -9,7 +9,24 @@
 #include "wallPolyPatch.H"
 #include "processorPolyPatch.H"
 
+#include <sstream>
+
 using namespace immersedDEM;
+
+namespace
+{
+
+//- A time in the log: ten digits (writePrecision 17 would show the step
+//  sums' round-off, 0.17600000000000013)
+std::string tenDigits(const Foam::scalar t)
+{
+    std::ostringstream os;
+    os.precision(10);
+    os << t;
+    return os.str();
+}
+
+} // End anonymous namespace
 
 Foam::immersedDEMStreams::immersedDEMStreams
 (
@@ -260,7 +277,7 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
         for (const int i : gone)
         {
             Info<< "immersedDEM: removed body " << bodies[i].name.c_str() << " at t "
-                << t << ": its centre " << coreConversion::toFoam(bodies[i].pose.position())
+                << tenDigits(t).c_str() << ": its centre " << coreConversion::toFoam(bodies[i].pose.position())
                 << (why[i] == 1 ? " entered the outlet" : " left the mesh")
                 << endl;
             removed_.append(word(bodies[i].name));
@@ -288,7 +305,7 @@ Foam::immersedDEMStreams::change Foam::immersedDEMStreams::update
         for (const int i : r.indices)
         {
             const rigidBody& b = dem.bodies()[i];
-            Info<< "immersedDEM: inserted body " << b.name.c_str() << " at t " << t
+            Info<< "immersedDEM: inserted body " << b.name.c_str() << " at t " << tenDigits(t).c_str()
                 << ": centre " << coreConversion::toFoam(b.pose.position())
                 << ", volume " << b.geometry->volume() << " m3, mass " << b.mass()
                 << " kg" << endl;

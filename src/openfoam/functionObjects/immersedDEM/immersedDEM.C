@@ -133,16 +133,17 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
                 << " m/s, mesh bounds " << mesh_.bounds() << "): the fluid no"
                 << " longer sees it. If bodies may leave, add"
                 << " removal { leavingMesh yes; } to "
-                << state_.properties().objectPath() << "; if this one should"
+                << immersedDEMChecks::caseFile(state_.properties()) << "; if this one should"
                 << " not have, see the log above for what drove it out"
                 << exit(FatalError);
         }
         // Partly outside (cut by an outlet, an inlet or a symmetry plane
         // that is not one of its walls): the part outside is not in the
-        // fluid, so the fluid's load on it is not the physical one (a body
-        // crossing an outlet is braked, one cut in half by a symmetry
-        // plane falls 30% too fast). Said once, with the remedy, until it
-        // is back inside
+        // fluid. Crossing an outlet or an inlet the body keeps its inner
+        // fluid's momentum (bodyFluidSums' outflow) and is removed once its
+        // centre has left, but the fluid's load on the part outside is
+        // missing (one cut in half by a symmetry plane falls 30% too fast).
+        // Said once, with the remedy, until it is back inside
         const scalar inside =
             i < projectedVolume.size()
           ? projectedVolume[i]/b.geometry->volume() : 1;
@@ -153,17 +154,17 @@ void Foam::functionObjects::immersedDEM::checkBodies(const scalar deltaT)
                 WarningInFunction
                     << "Function object " << name() << ", time "
                     << time_.timeName() << ": body '" << b.name.c_str()
-                    << "' is only " << std::round(1000*inside)/10
+                    << "' is only " << label(std::round(1000*inside))/10
+                    << '.' << label(std::round(1000*inside))%10
                     << "% inside the fluid"
                     << " mesh (centre " << x << ", mesh bounds "
-                    << mesh_.bounds() << "). The part outside is not in the"
-                    << " fluid, so the fluid force on it is not the physical"
-                    << " one. Bodies must lie inside the mesh: take them out"
-                    << " before they reach an outlet (a removal region in "
-                    << state_.properties().objectPath() << ", ending a"
-                    << " radius before the outlet), start them inside, and"
-                    << " model a symmetry plane a body may touch as one of"
-                    << " its walls" << endl;
+                    << mesh_.bounds() << "). The fluid has no load on the"
+                    << " part outside. Crossing an outlet or an inlet that is"
+                    << " expected; elsewhere start bodies inside the mesh,"
+                    << " and model a symmetry plane a body may touch as one"
+                    << " of its walls (in "
+                    << immersedDEMChecks::caseFile(state_.properties()) << ")"
+                    << endl;
             }
         }
         else if (inside > 0.95)
@@ -367,7 +368,7 @@ void Foam::functionObjects::immersedDEM::readViscosity(const dictionary& dict)
     if (!(nu_ > 0))
     {
         FatalIOErrorInFunction(*t)
-            << "Keyword 'nu' in " << t->objectPath() << " is " << nu_
+            << "Keyword 'nu' in " << immersedDEMChecks::caseFile(*t) << " is " << nu_
             << ": it must be > 0" << nl << exit(FatalIOError);
     }
 }
@@ -448,7 +449,7 @@ bool Foam::functionObjects::immersedDEM::execute()
             remedy
                 << "Reduce the CFD step, soften the materials, set"
                 << " time { deltaT ...; } in "
-                << state_.properties().objectPath() << " or raise maxSubSteps";
+                << immersedDEMChecks::caseFile(state_.properties()) << " or raise maxSubSteps";
         }
         FatalErrorInFunction
             << "Function object " << name() << ", time " << time_.timeName()

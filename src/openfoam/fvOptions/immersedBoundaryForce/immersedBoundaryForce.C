@@ -134,7 +134,7 @@ Foam::scalar Foam::fv::immersedBoundaryForce::viscosity
     if (!t.found("nu"))
     {
         FatalIOErrorInFunction(t)
-            << "Keyword 'nu' is missing from " << t.objectPath()
+            << "Keyword 'nu' is missing from " << immersedDEMChecks::caseFile(t)
             << ": the sharp surface of " << dict.name()
             << " needs the kinematic viscosity (or give 'nu' there)" << nl
             << exit(FatalIOError);
@@ -143,7 +143,7 @@ Foam::scalar Foam::fv::immersedBoundaryForce::viscosity
     if (!(nu > 0))
     {
         FatalIOErrorInFunction(t)
-            << "Keyword 'nu' in " << t.objectPath() << " is " << nu
+            << "Keyword 'nu' in " << immersedDEMChecks::caseFile(t) << " is " << nu
             << ": it must be > 0" << nl << exit(FatalIOError);
     }
     return nu;
