@@ -79,6 +79,11 @@ prism = os.path.join(pyDir, "immersedDEMPrism")
 for stl, a in (("cube.stl", ["14.1421356", "10", "4"]), ("disc.stl", ["10", "5", "24"])):
     subprocess.run(env=runEnv, args=[sys.executable, prism, os.path.join(case, "constant", "triSurface", stl)] + a,
                    check=True, capture_output=True)
+# -help prints the usage and writes nothing (it once wrote an STL named -help)
+r = subprocess.run(env=runEnv, args=[sys.executable, prism, "-help"], cwd=case, capture_output=True, text=True)
+check("immersedDEMPrism -help prints its usage and writes no file",
+      r.returncode == 0 and "Usage: immersedDEMPrism out.stl" in r.stdout
+      and not os.path.exists(os.path.join(case, "-help")))
 shutil.copy(os.path.join(project, "caseTemplates", "quickStart", "constant", "triSurface", "block.stl"),
             os.path.join(case, "constant", "triSurface"))
 out = os.path.join(case, "postProcessing", "pile", "0")
