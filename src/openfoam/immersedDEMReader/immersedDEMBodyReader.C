@@ -354,8 +354,11 @@ rigidBody Foam::immersedDEMReaders::readWall
         try
         {
             std::vector<wallMeshShape::edge> continued;
-            triangleSoup s =
-                immersedDEMPatchSurface::of(*mesh, d, name, &patchOfFace, &continued);
+            label openingEdges = 0;
+            triangleSoup s = immersedDEMPatchSurface::of
+            (
+                *mesh, d, name, &patchOfFace, &continued, thickness, &openingEdges
+            );
             // The rim: edges of one triangle only
             std::map<std::pair<int, int>, int> uses;
             for (const immersedDEM::triFace& f : s.faces)
@@ -368,15 +371,22 @@ rigidBody Foam::immersedDEMReaders::readWall
             label rim = 0;
             for (const auto& e : uses) rim += (e.second == 1);
             geometry = std::make_shared<wallMeshShape>(std::move(s), name, thickness, continued);
-            if (rim > 0)
+            if (rim > 0 || openingEdges > 0)
             {
                 Info<< "    wall " << name << ": continued across " << continued.size()
-                    << " of its " << rim << " rim edges, where it meets the rest of"
-                    << " the boundary at an angle (exact flat contacts up to them)";
-                if (label(continued.size()) < rim)
+                    << " edges, where it meets the rest of the boundary at an angle"
+                    << " (exact flat contacts up to them)";
+                if (openingEdges > 0)
                 {
-                    Info<< "; it ends at the other " << rim - label(continued.size())
-                        << " (an opening in its own plane, a baffle's edge)";
+                    Info<< "; " << openingEdges << " edges of an opening in its own"
+                        << " plane (an outlet in a floor) given sides " << thickness
+                        << " m deep";
+                }
+                // (the skirts' lower edges are the rim now)
+                const label ends = rim - label(continued.size()) - openingEdges;
+                if (ends > 0)
+                {
+                    Info<< "; it ends at " << ends << " other edges (a baffle's)";
                 }
                 Info<< endl;
             }

@@ -3,6 +3,7 @@
 #include "immersedDEMPeriodic.H"
 #include "wordRes.H"
 #include "SubField.H"
+#include "wallPolyPatch.H"
 #include <algorithm>
 #include <map>
 #include <tuple>
@@ -22,7 +23,9 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     const dictionary& d,
     const word& name,
     std::vector<label>* patchOfFace,
-    std::vector<std::array<int, 2>>* continued
+    std::vector<std::array<int, 2>>* continued,
+    const scalar skirtDepth,
+    label* openingEdges
 )
 {
     const wordRes selection(d.get<wordRes>("patches"));
@@ -56,10 +59,15 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     // The rest of the boundary where it meets a patch's edge: each edge of
     // an unselected, uncoupled patch's own boundary, as its two points and
     // its face's centre (which side the boundary turns to)
+    // (and whether the patch is open: not a wall and no constraint type,
+    // an outlet or an inlet)
     DynamicList<point> rest;
+    DynamicList<label> restOpen;
     for (const polyPatch& pp : mesh.boundaryMesh())
     {
         if (ids.found(pp.index()) || pp.coupled()) continue;
+        const bool open =
+            !isA<wallPolyPatch>(pp) && !polyPatch::constraintType(pp.type());
         const edgeList& edges = pp.edges();
         const pointField& local = pp.localPoints();
         for (label e = pp.nInternalEdges(); e < edges.size(); ++e)
@@ -69,6 +77,7 @@ triangleSoup Foam::immersedDEMPatchSurface::of
                 rest.append(local[edges[e].start()]);
                 rest.append(local[edges[e].end()]);
                 rest.append(pp.faceCentres()[fi]);
+                restOpen.append(open);
             }
         }
     }
@@ -76,6 +85,10 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     allRest[Pstream::myProcNo()] = rest;
     Pstream::gatherList(allRest);
     Pstream::scatterList(allRest);
+    List<labelList> allRestOpen(Pstream::nProcs());
+    allRestOpen[Pstream::myProcNo()] = restOpen;
+    Pstream::gatherList(allRestOpen);
+    Pstream::scatterList(allRestOpen);
 
     List<pointField> all(Pstream::nProcs());
     all[Pstream::myProcNo()] = mine;
@@ -176,18 +189,23 @@ triangleSoup Foam::immersedDEMPatchSurface::of
     {
         continued->clear();
         // The faces of the rest of the boundary at each of its edges (by
-        // the points' coordinates: the same on every processor)
-        std::map<std::pair<key, key>, std::vector<point>> restAt;
+        // the points' coordinates: the same on every processor): centre,
+        // open
+        std::map<std::pair<key, key>, std::vector<std::pair<point, bool>>> restAt;
         const auto edgeKey = [](const point& a, const point& b)
         {
             key ka{a.x(), a.y(), a.z()}, kb{b.x(), b.y(), b.z()};
             return ka < kb ? std::make_pair(ka, kb) : std::make_pair(kb, ka);
         };
-        for (const pointField& part : allRest)
+        for (label proci = 0; proci < allRest.size(); ++proci)
         {
+            const pointField& part = allRest[proci];
             for (label i = 0; i + 2 < part.size(); i += 3)
             {
-                restAt[edgeKey(part[i], part[i + 1])].push_back(part[i + 2]);
+                restAt[edgeKey(part[i], part[i + 1])].emplace_back
+                (
+                    part[i + 2], allRestOpen[proci][i/3] != 0
+                );
             }
         }
         std::map<std::pair<int, int>, int> uses;
@@ -198,8 +216,15 @@ triangleSoup Foam::immersedDEMPatchSurface::of
                 ++uses[{std::min(f[k], f[(k + 1)%3]), std::max(f[k], f[(k + 1)%3])}];
             }
         }
-        for (const immersedDEM::triFace& f : s.faces)
+        // Rim edges at an opening in the wall's own plane: the edge, the
+        // wall face's normal and the direction across the edge into the
+        // opening, and the face's patch
+        struct opening { int a, b; vec3 n, across; label patchi; };
+        std::vector<opening> openings;
+        const size_t nWallFaces = s.faces.size();
+        for (size_t fi = 0; fi < nWallFaces; ++fi)
         {
+            const immersedDEM::triFace& f = s.faces[fi];
             const vec3 n =
                 (s.points[f[1]] - s.points[f[0]]).cross(s.points[f[2]] - s.points[f[0]]).normalized();
             for (int k = 0; k < 3; ++k)
@@ -217,14 +242,59 @@ triangleSoup Foam::immersedDEMPatchSurface::of
                 // (1e-6 of its size: an outlet in the wall's own plane,
                 // or a baffle's other side, is not)
                 bool turns = true;
-                for (const point& c : it->second)
+                // An open patch's face in the wall's plane, beyond the edge
+                bool inPlane = false;
+                const vec3 e = (pb - pa).normalized();
+                const vec3 w = s.points[f[(k + 2)%3]] - pa;
+                const vec3 across = -(w - w.dot(e)*e).normalized();
+                for (const auto& [c, open] : it->second)
                 {
                     const vec3 q = vec3(c.x(), c.y(), c.z()) - pa;
                     turns = turns && n.dot(q) > 1e-6*q.norm();
+                    inPlane = inPlane
+                     || (open && std::abs(n.dot(q)) <= 1e-6*q.norm() && q.dot(across) > 0);
                 }
-                if (turns) continued->push_back({a, b});
+                if (turns)
+                {
+                    continued->push_back({a, b});
+                }
+                else if (inPlane)
+                {
+                    openings.push_back
+                    (
+                        {a, b, n, across, patchOfFace ? (*patchOfFace)[fi] : label(-1)}
+                    );
+                }
             }
         }
+        // The wall has a hole there (a floor's outlet): its solid ends at
+        // the hole's sides, a skirt of faces from each such edge down
+        // through the wall's thickness, facing into the hole. Without it
+        // the solid went on under the hole: a body falling through it was
+        // pushed back, or stopped the run
+        std::map<int, int> lowered;
+        const auto below = [&](const int a, const vec3& n)
+        {
+            const auto it = lowered.find(a);
+            if (it != lowered.end()) return it->second;
+            const int k = int(s.points.size());
+            s.points.push_back(s.points[a] - skirtDepth*n);
+            lowered.emplace(a, k);
+            return k;
+        };
+        for (const opening& o : openings)
+        {
+            const int la = below(o.a, o.n), lb = below(o.b, o.n);
+            for (immersedDEM::triFace t : {immersedDEM::triFace{o.a, o.b, lb}, immersedDEM::triFace{o.a, lb, la}})
+            {
+                const vec3 tn =
+                    (s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]]);
+                if (tn.dot(o.across) < 0) std::swap(t[1], t[2]);
+                s.faces.push_back(t);
+                if (patchOfFace) patchOfFace->push_back(o.patchi);
+            }
+        }
+        if (openingEdges) *openingEdges = label(openings.size());
     }
     return s;
 }
