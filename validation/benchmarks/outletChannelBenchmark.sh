@@ -22,19 +22,8 @@ set -u
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../.." && pwd -P)"
 libA= libB= work=/tmp/immersedDEM-benchmark-outletChannel
-while [ $# -gt 0 ]
-do
-    case "$1" in
-        -libA|-libB|-work)
-            [ $# -ge 2 ] || { echo "$1 needs a value" 1>&2; exit 1; }
-            case "$1" in
-                -libA) libA="$2" ;; -libB) libB="$2" ;; -work) work="$2" ;;
-            esac
-            shift 2 ;;
-        *) echo "Unknown option $1 (see the header of $0)" 1>&2; exit 1 ;;
-    esac
-done
 . "$here/twoLibraries.sh"
+twoLibrariesOptions "$@"
 twoLibrariesPrepare
 c="$work/case"
 cp -r "$project/caseTemplates/quickStart" "$c"
@@ -114,47 +103,24 @@ E
  && immersedDEMPrism constant/triSurface/cyl.stl 8 5 24 > /dev/null \
  && foamDictionary -entry PIMPLE.pRefCell -remove system/fvSolution > /dev/null \
  && foamDictionary -entry PIMPLE.pRefValue -remove system/fvSolution > /dev/null \
- && foamDictionary -entry endTime -set 0.6 system/controlDict > /dev/null \
- && foamDictionary -entry maxDeltaT -set 0.004 system/controlDict > /dev/null \
- && foamDictionary -entry writeControl -set adjustableRunTime system/controlDict > /dev/null \
- && foamDictionary -entry writeInterval -set 0.1 system/controlDict > /dev/null \
- && blockMesh > log.blockMesh 2>&1
-) || { echo "Could not make the case in $c (see $c/log.blockMesh)" 1>&2; exit 1; }
-cp -r "$c" "$work/A"
-cp -r "$c" "$work/B"
-twoLibrariesRun
-status=0
+ && foamDictionary -entry maxDeltaT -set 0.004 system/controlDict > /dev/null
+) || { echo "Could not make the case in $c" 1>&2; exit 1; }
+twoLibrariesMesh "$c" 0.6 0.1
+twoLibrariesRunCase "$c"
 for v in A B
 do
     log="$work/$v/log.pimpleFoam"
-    if ! grep -q "^End" "$log"
-    then
-        echo "run $v did not end: $log"; status=1; continue
-    fi
     echo "== $v"
     grep "continued across" "$log"
     grep "immersedDEM: removed body" "$log" | sed 's/: its centre.*//'
     grep "contacts evaluated" "$log" | tail -1
 done
-[ $status -eq 0 ] || exit 1
+twoLibrariesRatios
 /usr/bin/python3 - "$work" "$project/src/python" <<'PY'
-import re, sys
+import sys
 work = sys.argv[1]
 sys.path.insert(0, sys.argv[2])
 from immersedDEMData import readTable
-def figures(v):
-    log = open("%s/%s/log.pimpleFoam" % (work, v)).read()
-    s = log[log.rindex("Summary (wall-clock seconds"):]
-    def part(name):
-        return float(re.search(r"^\s+%s\s+([0-9.]+)" % re.escape(name), s, re.M).group(1))
-    per = float(re.search(r"([0-9.e+]+) wall s per simulated s", s).group(1))
-    q = int(re.findall(r"queries (\d+) over", log)[-1])
-    return part("contact geometry and laws"), part("immersedDEM (all of the above)"), per, q
-A, B = figures("A"), figures("B")
-print("\nB/A:")
-for k, name in enumerate(["contact geometry and laws [s]", "the plugin [s]", "wall s per simulated s"]):
-    print("  %-32s %8.3f -> %8.3f  %.3f" % (name, A[k], B[k], B[k]/A[k]))
-print("  %-32s %8d -> %8d" % ("octree queries", A[3], B[3]))
 print("\nSpeed crossing the outlet, over the speed when the front reaches it (lowest-highest):")
 print("  %-6s %18s %18s" % ("body", "A", "B"))
 tables = {v: readTable("%s/%s/postProcessing/bodies/0/bodies.dat" % (work, v)) for v in "AB"}

@@ -21,19 +21,8 @@ set -u
 here="$(cd "$(dirname "$0")" && pwd -P)"
 project="$(cd "$here/../.." && pwd -P)"
 libA= libB= work=/tmp/immersedDEM-benchmark-spheresInCorners
-while [ $# -gt 0 ]
-do
-    case "$1" in
-        -libA|-libB|-work)
-            [ $# -ge 2 ] || { echo "$1 needs a value" 1>&2; exit 1; }
-            case "$1" in
-                -libA) libA="$2" ;; -libB) libB="$2" ;; -work) work="$2" ;;
-            esac
-            shift 2 ;;
-        *) echo "Unknown option $1 (see the header of $0)" 1>&2; exit 1 ;;
-    esac
-done
 . "$here/twoLibraries.sh"
+twoLibrariesOptions "$@"
 twoLibrariesPrepare
 c="$work/case"
 cp -r "$project/caseTemplates/quickStart" "$c"
@@ -56,45 +45,15 @@ walls
     tank { type patch; patches (walls); material glass; }
 }
 DICT
-(
-    cd "$c" \
- && foamDictionary -entry endTime -set 0.25 system/controlDict > /dev/null \
- && foamDictionary -entry writeControl -set adjustableRunTime system/controlDict > /dev/null \
- && foamDictionary -entry writeInterval -set 0.05 system/controlDict > /dev/null \
- && blockMesh > log.blockMesh 2>&1
-) || { echo "Could not make the case in $c (see $c/log.blockMesh)" 1>&2; exit 1; }
-cp -r "$c" "$work/A"
-cp -r "$c" "$work/B"
-twoLibrariesRun
-status=0
+twoLibrariesMesh "$c" 0.25 0.05
+twoLibrariesRunCase "$c"
 for v in A B
 do
     log="$work/$v/log.pimpleFoam"
-    if ! grep -q "^End" "$log"
-    then
-        echo "run $v did not end: $log"; status=1; continue
-    fi
     echo "== $v"
     sed -n '/Summary (wall-clock seconds/,/largest overlap/p' "$log"
     grep "contacts evaluated" "$log" | tail -1
     echo "   bodies at the end (name, position):"
     tail -4 "$work/$v/postProcessing/bodies/0/bodies.dat" | awk '{print "     " $2, $3, $4, $5}'
 done
-[ $status -eq 0 ] || exit 1
-/usr/bin/python3 - "$work" <<'PY'
-import re, sys
-work = sys.argv[1]
-def figures(v):
-    log = open("%s/%s/log.pimpleFoam" % (work, v)).read()
-    s = log[log.rindex("Summary (wall-clock seconds"):]
-    def part(name):
-        return float(re.search(r"^\s+%s\s+([0-9.]+)" % re.escape(name), s, re.M).group(1))
-    per = float(re.search(r"([0-9.e+]+) wall s per simulated s", s).group(1))
-    q = int(re.findall(r"queries (\d+) over", log)[-1])
-    return part("contact geometry and laws"), part("immersedDEM (all of the above)"), per, q
-A, B = figures("A"), figures("B")
-print("\nB/A:")
-for k, name in enumerate(["contact geometry and laws [s]", "the plugin [s]", "wall s per simulated s"]):
-    print("  %-32s %8.3f -> %8.3f  %.3f" % (name, A[k], B[k], B[k]/A[k]))
-print("  %-32s %8d -> %8d" % ("octree queries", A[3], B[3]))
-PY
+twoLibrariesRatios
