@@ -224,8 +224,9 @@ Foam::bodyFluidSums::bodyFluidSums
         forAll(patches, patchi)
         {
             const polyPatch& pp = patches[patchi];
-            if (pp.coupled()) continue;
             const scalarField& phiP = phi->boundaryField()[patchi];
+            // (an empty patch's fields have no values: a 2D slab's sides)
+            if (pp.coupled() || phiP.size() != pp.size()) continue;
             const vectorField& UP = U.boundaryField()[patchi];
             const vectorField& CfP = mesh.Cf().boundaryField()[patchi];
             const scalarField& magSfP = mesh.magSf().boundaryField()[patchi];
