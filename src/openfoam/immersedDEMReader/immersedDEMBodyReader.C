@@ -359,19 +359,12 @@ rigidBody Foam::immersedDEMReaders::readWall
             (
                 *mesh, d, name, &patchOfFace, &continued, thickness, &openingEdges
             );
-            // The rim: edges of one triangle only
-            std::map<std::pair<int, int>, int> uses;
-            for (const immersedDEM::triFace& f : s.faces)
-            {
-                for (int k = 0; k < 3; ++k)
-                {
-                    ++uses[{std::min(f[k], f[(k + 1)%3]), std::max(f[k], f[(k + 1)%3])}];
-                }
-            }
-            label rim = 0;
-            for (const auto& e : uses) rim += (e.second == 1);
-            geometry = std::make_shared<wallMeshShape>(std::move(s), name, thickness, continued);
-            if (rim > 0 || openingEdges > 0)
+            const auto wall =
+                std::make_shared<wallMeshShape>(std::move(s), name, thickness, continued);
+            geometry = wall;
+            // (the openings' sides end in rim edges of their own)
+            const label ends = label(wall->rimEdges()) - openingEdges;
+            if (!continued.empty() || openingEdges > 0 || ends > 0)
             {
                 Info<< "    wall " << name << ": continued across " << continued.size()
                     << " edges, where it meets the rest of the boundary at an angle"
@@ -382,8 +375,6 @@ rigidBody Foam::immersedDEMReaders::readWall
                         << " plane (an outlet in a floor) given sides " << thickness
                         << " m deep";
                 }
-                // (the skirts' lower edges are the rim now)
-                const label ends = rim - label(continued.size()) - openingEdges;
                 if (ends > 0)
                 {
                     Info<< "; it ends at " << ends << " other edges (a baffle's)";

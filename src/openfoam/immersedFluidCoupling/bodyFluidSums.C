@@ -212,7 +212,10 @@ Foam::bodyFluidSums::bodyFluidSums
     // It ramps over the face's size across the surface (signed distance
     // of the face centre), so that it grows smoothly as the surface
     // crosses the face
-    if (const surfaceScalarField* phi = mesh.findObject<surfaceScalarField>("phi"))
+    // (deltaT 0: the momenta only, as at the start of a step)
+    const surfaceScalarField* phi =
+        deltaT > 0 ? mesh.findObject<surfaceScalarField>("phi") : nullptr;
+    if (phi)
     {
         const polyBoundaryMesh& patches = mesh.boundaryMesh();
         const auto inside = [&](const label i, const point& x, const scalar size)

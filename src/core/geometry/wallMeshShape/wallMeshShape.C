@@ -76,6 +76,7 @@ wallMeshShape::wallMeshShape
         }
         it->second = 0;
     }
+    for (const auto& e : edgeUses) rimEdges_ += (e.second == 1);
     onRim_.assign(surface_.faces.size(), 0);
     std::vector<char> openVertex(surface_.points.size(), 0);
     for (size_t fi = 0; fi < surface_.faces.size(); ++fi)
