@@ -103,14 +103,15 @@ TEST(couplingMemory, fieldsListEveryMemberOnce)
     filler f{names};
     couplingMemory::fields(m, f);
 
-    // 8 vectors, history, inContact, recentContacts, and the two
-    // measurements' 13 members each
-    EXPECT_EQ(f.count, 11 + 2*13);
+    // 8 vectors, history, inContact, recentContacts, the force and torque
+    // taken, and the two measurements' 13 members each
+    EXPECT_EQ(f.count, 13 + 2*13);
     EXPECT_EQ(names.size(), size_t(f.count));
     EXPECT_TRUE(names.count("previousVelocity0"));
     EXPECT_TRUE(names.count("recentContacts"));
     EXPECT_TRUE(names.count("addedMassSumFa"));
     EXPECT_TRUE(names.count("addedInertiaSkip"));
+    EXPECT_TRUE(names.count("takenTorque"));
     // Every member was reached: none is at its default
     const couplingMemory fresh;
     EXPECT_NE(m.innerMomentum, fresh.innerMomentum);
@@ -118,6 +119,7 @@ TEST(couplingMemory, fieldsListEveryMemberOnce)
     EXPECT_NE(m.history, fresh.history);
     EXPECT_NE(m.wasInContact, fresh.wasInContact);
     EXPECT_NE(m.recentContacts, fresh.recentContacts);
+    EXPECT_NE(m.takenForce, fresh.takenForce);
     EXPECT_NE(m.addedMass.value(), fresh.addedMass.value());
     EXPECT_NE(m.addedInertia.value(true), fresh.addedInertia.value(true));
     // Nothing the list misses: the struct is the members listed (a twin
@@ -128,6 +130,7 @@ TEST(couplingMemory, fieldsListEveryMemberOnce)
         int history;
         bool inContact;
         int recentContacts;
+        vec3 taken[2];
         measuredAddedMass m[2];
     };
     EXPECT_EQ(sizeof(couplingMemory), sizeof(twin));

@@ -8,6 +8,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 using namespace immersedDEM;
 
@@ -88,6 +89,58 @@ TEST(immersedForcing, backwardDerivativeIsExactForQuadratics)
     // Euler is exact for a line
     const auto f = immersedForcing::timeDerivative::euler(0.7);
     EXPECT_NEAR(f.of(vec3(1 + 0.7*4, 0, 0), vec3(1, 0, 0), vec3(-7, 0, 0)).x(), 4, 1e-12);
+}
+
+// The scheme's rates taken as first-order rates: from an Euler first step
+// and backward after it (OpenFOAM's start), with steps that vary, the
+// derivatives of any sequence become (x - x0)/deltaT. An impulsive start
+// (x 0, then 1 at every step): backward's second step answers -c00/deltaT,
+// and the rates summed over the steps give 1 - c00 of the change (0.5 at
+// equal steps); taken as first-order rates they give all of it
+TEST(immersedForcing, firstOrderTakesTheSchemesRatesAsTheChange)
+{
+    const std::vector<double> x{0.3, -1.2, 4.0, 4.5, 4.5, 2.0, 2.25, -0.5};
+    const std::vector<double> dt{0.1, 0.13, 0.07, 0.2, 0.2, 0.05, 0.11};
+    double r0 = 0;
+    for (size_t n = 1; n < x.size(); ++n)
+    {
+        const auto d = n == 1
+            ? immersedForcing::timeDerivative::euler(dt[0])
+            : immersedForcing::timeDerivative::backward(dt[n - 1], dt[n - 2]);
+        const double rate = d.of
+        (
+            vec3(x[n], 0, 0), vec3(x[n - 1], 0, 0), vec3(n > 1 ? x[n - 2] : 0, 0, 0)
+        ).x();
+        const double r = d.firstOrder(vec3(rate, 0, 0), vec3(r0, 0, 0)).x();
+        EXPECT_NEAR(r, (x[n] - x[n - 1])/dt[n - 1], 1e-12) << "step " << n;
+        r0 = r;
+    }
+
+    // The impulsive start at equal steps
+    const double h = 0.01;
+    double sumScheme = 0, sumTaken = 0;
+    r0 = 0;
+    const std::vector<double> u{0, 1, 1, 1, 1, 1};
+    for (size_t n = 1; n < u.size(); ++n)
+    {
+        const auto d = n == 1
+            ? immersedForcing::timeDerivative::euler(h)
+            : immersedForcing::timeDerivative::backward(h, h);
+        const double rate = d.of
+        (
+            vec3(u[n], 0, 0), vec3(u[n - 1], 0, 0), vec3(n > 1 ? u[n - 2] : 0, 0, 0)
+        ).x();
+        if (n == 2) EXPECT_NEAR(rate, -0.5/h, 1e-9);
+        const double r = d.firstOrder(vec3(rate, 0, 0), vec3(r0, 0, 0)).x();
+        sumScheme += rate*h;
+        sumTaken += r*h;
+        r0 = r;
+    }
+    EXPECT_NEAR(sumScheme, 0.5, 1e-12);
+    EXPECT_NEAR(sumTaken, 1, 1e-12);
+    // Euler's rates are taken as they are
+    const auto e = immersedForcing::timeDerivative::euler(h);
+    EXPECT_EQ(e.firstOrder(vec3(2, 0, 0), vec3(7, 0, 0)).x(), 2);
 }
 
 // The restart writes what fields() lists: every member, each name once

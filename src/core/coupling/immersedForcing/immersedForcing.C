@@ -48,6 +48,7 @@ timeDerivative timeDerivative::backward(const double deltaT, const double deltaT
 {
     timeDerivative d;
     d.deltaT = deltaT;
+    d.deltaT0 = deltaT0;
     d.c = 1 + deltaT/(deltaT + deltaT0);
     d.c00 = deltaT*deltaT/(deltaT0*(deltaT + deltaT0));
     d.c0 = d.c + d.c00;
