@@ -30,6 +30,7 @@ Foam::immersedFluidCoupling::immersedFluidCoupling(const demSolver& dem)
     memory_.setSize(n);
     sizes_.setSize(n);
     sized_.setSize(n, false);
+    takenUnknown_.setSize(n, false);
     for (label i = 0; i < n; ++i)
     {
         memory_[i] = couplingMemory
@@ -140,7 +141,9 @@ void Foam::immersedFluidCoupling::fluidLoads
         couplingMemory& mem = memory_[i];
         const scalar Vb = b.geometry->volume();
         // The fluid's time scheme: second order from the second step of a
-        // body's history on (OpenFOAM's backward is Euler in its first)
+        // body's history on (OpenFOAM's backward is Euler in a run's first
+        // step; a body inserted later takes its first step as Euler too,
+        // while the fluid is already second order)
         const bool second = s.backward && mem.history >= 1 && previousDeltaT_ > 0;
         const immersedForcing::timeDerivative ddt = second
             ? immersedForcing::timeDerivative::backward(deltaT, previousDeltaT_)
@@ -166,6 +169,12 @@ void Foam::immersedFluidCoupling::fluidLoads
             rho, c(P[i]), innerRate, Vb, dem.settings().gravity
         );
         const vec3 Tscheme = immersedForcing::fluidTorque(rho, c(PM[i]), innerAngularRate);
+        if (takenUnknown_[i])
+        {
+            mem.takenForce = Fscheme;
+            mem.takenTorque = Tscheme;
+            takenUnknown_[i] = false;
+        }
         const vec3 F = ddt.firstOrder(Fscheme, mem.takenForce);
         const vec3 T = ddt.firstOrder(Tscheme, mem.takenTorque);
         mem.takenForce = F;
@@ -286,6 +295,7 @@ void Foam::immersedFluidCoupling::fluidLoads
             Info<< "IFC " << word(b.name) << " t " << U.time().value()
                 << " dt " << deltaT
                 << " F " << v(F) << " T " << v(T)
+                << " F(scheme) " << v(Fscheme) << " T(scheme) " << v(Tscheme)
                 << " v " << v(b.velocity) << " w " << v(b.angularVelocity)
                 << " a " << v(a)
                 << " m " << b.mass() << " mhat " << z.addedMass
@@ -329,6 +339,7 @@ void Foam::immersedFluidCoupling::bodiesChanged
     remap(memory_, couplingMemory());
     remap(sizes_, fluidImpedance::bodySize());
     remap(sized_, false);
+    remap(takenUnknown_, false);
     for (label i = firstNew; i < n; ++i)
     {
         memory_[i] = couplingMemory

@@ -18,9 +18,10 @@ void Foam::immersedFluidCoupling::writeBody(Ostream& os, const label i) const
 void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
 {
     // A state written before some of the memory existed: what it lacks is
-    // as for a body in contact with no history (first order in time at its
-    // next step; the measured added mass starts from nothing). The inner
-    // momenta and the last velocities are always there
+    // as for a body in contact with no history (the measured added mass
+    // starts from nothing; without the force taken at the last step, the
+    // next step takes the fluid's force as it is). The inner momenta and
+    // the last velocities are always there
     couplingMemory m;
     m.wasInContact = true;
     couplingMemory::fields
@@ -40,6 +41,7 @@ void Foam::immersedFluidCoupling::readBody(const dictionary& d, const label i)
         }
     );
     memory_[i] = m;
+    takenUnknown_[i] = !d.found("takenForce");
     innerMomentumSet_ = true;
     previousDeltaT_ = max(previousDeltaT_, d.getOrDefault<scalar>("previousDeltaT", 0));
 }
