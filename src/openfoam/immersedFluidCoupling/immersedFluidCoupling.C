@@ -159,11 +159,9 @@ void Foam::immersedFluidCoupling::fluidLoads
         // time scheme, and as the body takes them: first-order rates over
         // the step (timeDerivative::firstOrder). With backward, a change
         // of the fluid's velocity in one step is answered in the next by a
-        // force against it on fluid that goes on unchanged: in a channel
-        // started at 0.1 m/s, a neutrally buoyant sphere went 0.10 ->
-        // 0.02 m/s in the second step (-0.05 m/s under the contact rule)
-        // and stayed behind the water for 50 ms. As first-order rates the
-        // body's velocity changes by what the fluid's did (0.10, 0.103)
+        // force against it on fluid that goes on unchanged, which a body
+        // moving to first order would take as real (a flow started at
+        // t = 0 sent neutrally buoyant bodies upstream: case.impulsiveStart)
         const vec3 Fscheme = immersedForcing::fluidForce
         (
             rho, c(P[i]), innerRate, Vb, dem.settings().gravity

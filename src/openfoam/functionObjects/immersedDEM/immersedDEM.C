@@ -407,9 +407,8 @@ bool Foam::functionObjects::immersedDEM::execute()
         // The velocity's time scheme (backward: second order). The fluid's
         // force is taken from the solver's own rate of change of the
         // fluid's momentum, which the coupling knows for Euler and
-        // backward (immersedForcing::timeDerivative); with CrankNicolson
-        // 0.9 a neutrally buoyant sphere in a channel started at 0.1 m/s
-        // fell to 0.002 m/s while the water flowed on
+        // backward (immersedForcing::timeDerivative); another scheme's rate
+        // (CrankNicolson's carries its last one) would be read wrongly
         const word scheme
         (
             mesh_.ddtScheme("ddt(" + UName_ + ')')[0].wordToken()
