@@ -11,7 +11,12 @@ Description
         rate of Coulomb's friction on its face, mu F_n rbar/I (rbar the
         mean distance of the face's points from its centre), and stays
         stopped (twisting friction; a point's friction has no couple
-        about the normal).
+        about the normal);
+      - with rolling friction mu_r, a sphere on the incline stays put
+        while tan(theta) < mu_r (the couple mu_r R F_n holds gravity's
+        m g sin(theta) R about the contact point), and above it rolls
+        with a = g (sin theta - mu_r cos theta)/(1 + I/(m R^2)), the
+        couple constant (volume and Hertz-Mindlin laws).
 
     The incline: a horizontal plane wall z <= 0 and gravity turned by theta
     about y, g (sin theta, 0, -cos theta): the slope runs along +x.
@@ -206,13 +211,17 @@ const double sphereR = 5e-3;
 
 std::unique_ptr<demSolver> sphereOnIncline
 (
-    double theta, double mu, const std::string& law
+    double theta, double mu, const std::string& law, double muR = 0,
+    bool sweep = true
 )
 {
     demSettings s;
     s.overlapMethod = "sphere";
     s.contactLaw = law;
-    auto dem = inclineSolver(material(1e7, 0.3, mu), theta, s);
+    s.sphereSweep = sweep;
+    contactMaterial m = material(1e7, 0.3, mu);
+    m.rollingFriction = muR;
+    auto dem = inclineSolver(m, theta, s);
     rigidBody ball("ball", std::make_shared<sphereShape>(sphereR), 1000, 0);
     ball.pose = bodyPose(vec3(0, 0, sphereR), quat::Identity());
     dem->addBody(std::move(ball));
@@ -242,6 +251,35 @@ void checkRolling(const std::string& law)
     std::printf("  %s: v = %.5f, omega R = %.5f, error %.3f %%\n",
         law.c_str(), v, wR, 100*relErr(wR, v));
     EXPECT_LT(relErr(wR, v), 0.01);     // as a's: the vibration
+}
+
+
+//- Rolling friction mu_r = 0.05 on a 10 degree incline (tan 0.176):
+//  a = g (sin theta - mu_r cos theta)/(7/5), the couple against rolling
+//  mu_r R F_n (R* = R against a plane, F_n = m g cos theta)
+void checkRollingFriction(const std::string& law, bool sweep)
+{
+    const double theta = deg(10), mu = 0.5, muR = 0.05;
+    ASSERT_GT(std::tan(theta), muR);
+    auto dem = sphereOnIncline(theta, mu, law, muR, sweep);
+    const record r = run(*dem, 0.25);
+    // (the sweep takes the Hertz law's spheres only)
+    EXPECT_EQ(dem->work().sphereSweeps > 0, sweep && law == "hertzMindlin");
+    ASSERT_TRUE(r.finite);
+    EXPECT_EQ(r.lostContact, 0);
+
+    const double a = slope(r.t, r.vx, 0.05, 0.25);
+    const double aExact = g0*(std::sin(theta) - muR*std::cos(theta))/1.4;
+    const double aFree = 5.0/7.0*g0*std::sin(theta);
+    std::printf("  %s (%s), mu_r %.2f: a = %.5f, g (sin - mu_r cos)/1.4 = %.5f, error %.3f %% "
+        "(without rolling friction %.5f)\n",
+        law.c_str(), dem->work().sphereSweeps > 0 ? "sphere sweep" : "general loop", muR, a, aExact,
+        100*relErr(a, aExact), aFree);
+    // 1%: the fitted slope through the soft contact's vibration, as
+    // checkRolling's (the couple takes 28% off the free rolling's a)
+    EXPECT_LT(relErr(a, aExact), 0.01);
+    const double v = r.vx.back(), wR = r.wy.back()*sphereR;
+    EXPECT_LT(relErr(wR, v), 0.01);     // still rolls without slip
 }
 
 } // End anonymous namespace
@@ -389,6 +427,46 @@ TEST(demFriction, sphereRollsDownInclineVolumeLaw)
 TEST(demFriction, sphereRollsDownInclineHertzMindlin)
 {
     checkRolling("hertzMindlin");
+}
+
+
+TEST(demFriction, rollingFrictionHoldsASphereBelowItsAngle)
+{
+    // tan(theta) = mu_r/2: gravity's couple about the contact point is
+    // half the largest the rolling spring holds
+    const double muR = 0.05, theta = std::atan(0.5*muR);
+    for (const std::string law : {"volume", "hertzMindlin"})
+    {
+        auto dem = sphereOnIncline(theta, 0.5, law, muR);
+        run(*dem, 0.05);      // settles into its contact and springs
+        const double x0 = dem->bodies()[1].pose.position().x();
+        const double T = 0.2;
+        const record r = run(*dem, T);
+        ASSERT_TRUE(r.finite);
+        EXPECT_EQ(r.lostContact, 0);
+        double drift = 0;
+        for (double x : r.x) drift = std::max(drift, std::abs(x - x0));
+        const double rolled = 0.5*5.0/7.0*g0*std::sin(theta)*T*T;
+        std::printf("  %s, mu_r %.2f at tan(theta) = mu_r/2: moved %.3e m in %.2f s "
+            "(%.2e of rolling freely), spin at the end %.2e rad/s\n",
+            law.c_str(), muR, drift, T, drift/rolled, r.wy.back());
+        // 1e-3 of rolling freely: the springs' elastic give under the
+        // load (without rolling friction it rolls the whole distance)
+        EXPECT_LT(drift, 1e-3*rolled);
+    }
+}
+
+
+TEST(demFriction, sphereRollsAgainstRollingFrictionVolumeLaw)
+{
+    checkRollingFriction("volume", false);
+}
+
+
+TEST(demFriction, sphereRollsAgainstRollingFrictionHertzMindlin)
+{
+    checkRollingFriction("hertzMindlin", true);
+    checkRollingFriction("hertzMindlin", false);
 }
 
 

@@ -168,7 +168,8 @@ void appendHistories(const demSolver& dem, std::vector<double>& out)
                 out.end(),
                 {
                     c.tangentialSpring.x(), c.tangentialSpring.y(), c.tangentialSpring.z(),
-                    c.point.x(), c.normal.z(), c.approach, c.maxNormalForce
+                    c.point.x(), c.normal.z(), c.approach, c.maxNormalForce,
+                    c.rolling.x(), c.rolling.y(), c.rolling.z()
                 }
             );
         }
@@ -220,7 +221,10 @@ runResult runPile(std::shared_ptr<demCommunicator> comm, bool rings = false)
     s.overlap = overlapSettings{0.001, 1};
     s.overlap.convexExact = rings;
     s.reuseContacts = true;
-    demSolver dem({test::material("soft", 1e6)}, s);
+    // (rolling friction: its springs are exchanged with the histories)
+    contactMaterial soft = test::material("soft", 1e6);
+    soft.rollingFriction = 0.02;
+    demSolver dem({soft}, s);
     dem.setCommunicator(comm);
     dem.setFluidViscosity(1e-3);
 
@@ -405,6 +409,8 @@ runResult runSpherePour(bool sweep, std::shared_ptr<demCommunicator> comm)
     contactMaterial steel = test::material("steel", 2e7);
     steel.restitution = 0.2;
     steel.friction = 0.3;
+    glass.rollingFriction = 0.02;
+    steel.rollingFriction = 0.01;
     demSolver dem({glass, steel}, s);
     dem.setCommunicator(comm);
 

@@ -32,7 +32,11 @@ std::vector<contactMaterial> Foam::immersedDEMReaders::readMaterials(const dicti
         const dictionary& d = immersedDEMChecks::subDictEntry(all, e, "material properties");
         immersedDEMChecks::allowOnly
         (
-            d, {"youngsModulus", "poissonsRatio", "restitution", "friction"}
+            d,
+            {
+                "youngsModulus", "poissonsRatio", "restitution", "friction",
+                "rollingFriction"
+            }
         );
         contactMaterial m;
         m.name = e.keyword();
@@ -43,7 +47,27 @@ std::vector<contactMaterial> Foam::immersedDEMReaders::readMaterials(const dicti
         m.youngsModulus = immersedDEMChecks::inRange(d, "youngsModulus", 1e3, 1e13);
         m.poissonsRatio = immersedDEMChecks::inRange(d, "poissonsRatio", 0, 0.5);
         m.restitution = immersedDEMChecks::inRangeOrDefault(d, "restitution", 1e-6, 1, 1);
-        m.friction = immersedDEMChecks::inRangeOrDefault(d, "friction", 0, 100, 0);
+        // Defaults that give a pile and a bed their shape
+        // (caseTemplates/README.md, materials); a material made
+        // frictionless (friction 0) gets no rolling friction either
+        m.friction =
+            immersedDEMChecks::inRangeOrDefault(d, "friction", 0, 100, defaultFriction);
+        m.rollingFriction = immersedDEMChecks::inRangeOrDefault
+        (
+            d, "rollingFriction", 0, 1, m.friction > 0 ? defaultRollingFriction : 0
+        );
+        // Logged with what was defaulted: friction and rolling friction
+        // change a pile's shape
+        auto given = [&d](const char* key)
+        {
+            return d.found(key) ? "" : " (default)";
+        };
+        Info<< "    material " << e.keyword() << ": youngsModulus "
+            << m.youngsModulus << " Pa, poissonsRatio " << m.poissonsRatio
+            << ", restitution " << m.restitution << given("restitution")
+            << ", friction " << m.friction << given("friction")
+            << ", rollingFriction " << m.rollingFriction << given("rollingFriction")
+            << endl;
         materials.push_back(m);
     }
     if (materials.empty())

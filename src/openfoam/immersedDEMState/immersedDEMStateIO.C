@@ -105,6 +105,7 @@ void Foam::immersedDEMState::writeRestart(const fileName& timePath) const
                 os.writeEntry("approach", h.approach);
                 os.writeEntry("maxNormalForce", h.maxNormalForce);
                 os.writeEntry("twist", h.twist);
+                os.writeEntry("rolling", v(h.rolling));
                 os.endBlock();
             }
         }
@@ -320,6 +321,8 @@ bool Foam::immersedDEMState::readRestart()
         h.maxNormalForce = d.get<scalar>("maxNormalForce");
         // (restart files written before twisting friction: none)
         h.twist = d.getOrDefault<scalar>("twist", 0);
+        // (and before rolling friction: none)
+        h.rolling = c(d.getOrDefault<vector>("rolling", Zero));
         histories[{bodyIndex(d, "bodyA"), bodyIndex(d, "bodyB")}].push_back(h);
     }
     dem_->setHistories(std::move(histories));

@@ -27,6 +27,8 @@ void contactMaterial::check() const
         bad("restitution", restitution, "in (0, 1]");
     if (!(friction >= 0 && std::isfinite(friction)))
         bad("friction", friction, ">= 0");
+    if (!(rollingFriction >= 0 && std::isfinite(rollingFriction)))
+        bad("rollingFriction", rollingFriction, ">= 0");
 }
 
 
@@ -45,6 +47,7 @@ pairMaterial pairMaterial::of(const contactMaterial& a, const contactMaterial& b
     p.effectiveShearModulus = 1/(shearCompliance(a) + shearCompliance(b));
     p.restitution = std::min(a.restitution, b.restitution);
     p.friction = std::min(a.friction, b.friction);
+    p.rollingFriction = std::min(a.rollingFriction, b.rollingFriction);
     p.poissonsRatio = 0.5*(a.poissonsRatio + b.poissonsRatio);
     return p;
 }

@@ -61,6 +61,7 @@ void pairLoadExchange::gather
             mine.push_back(h.approach);
             mine.push_back(h.maxNormalForce);
             mine.push_back(h.twist);
+            put3(h.rolling);
         }
     }
 
@@ -119,6 +120,7 @@ void pairLoadExchange::gather
                 h.approach = get();
                 h.maxNormalForce = get();
                 h.twist = get();
+                h.rolling = get3();
                 g.contacts.push_back(c);
                 g.histories.push_back(h);
             }
