@@ -120,6 +120,19 @@ record run(demSolver& dem, double T, double sample = 1e-3)
 }
 
 
+//- Body 1 settled for 0.05 s, then watched for T (samples in r): the
+//  largest distance along x from where it settled
+double driftAfterSettling(demSolver& dem, double T, record& r)
+{
+    run(dem, 0.05);
+    const double x0 = dem.bodies()[1].pose.position().x();
+    r = run(dem, T);
+    double drift = 0;
+    for (double x : r.x) drift = std::max(drift, std::abs(x - x0));
+    return drift;
+}
+
+
 //- Least-squares slope of y(t) over t0 <= t <= t1
 double slope
 (
@@ -292,15 +305,11 @@ TEST(demFriction, boxSticksBelowAngleOfRepose)
     auto dem = boxOnIncline(theta, mu);
 
     // Settle, then watch for 0.2 s
-    run(*dem, 0.05);
-    const double x0 = dem->bodies()[1].pose.position().x();
     const double T = 0.2;
-    const record r = run(*dem, T);
+    record r;
+    const double drift = driftAfterSettling(*dem, T, r);
     ASSERT_TRUE(r.finite);
     EXPECT_EQ(r.lostContact, 0);
-
-    double drift = 0;
-    for (double x : r.x) drift = std::max(drift, std::abs(x - x0));
     const double frictionless = 0.5*g0*std::sin(theta)*T*T;
     const double vMax = maxAbs(r.vx);
     std::printf("  stick: displacement %.3e m (%.2e of frictionless sliding), max |v_t| %.3e m/s (%.2e of g sin(theta) T)\n",
@@ -438,14 +447,11 @@ TEST(demFriction, rollingFrictionHoldsASphereBelowItsAngle)
     for (const std::string law : {"volume", "hertzMindlin"})
     {
         auto dem = sphereOnIncline(theta, 0.5, law, muR);
-        run(*dem, 0.05);      // settles into its contact and springs
-        const double x0 = dem->bodies()[1].pose.position().x();
         const double T = 0.2;
-        const record r = run(*dem, T);
+        record r;
+        const double drift = driftAfterSettling(*dem, T, r);
         ASSERT_TRUE(r.finite);
         EXPECT_EQ(r.lostContact, 0);
-        double drift = 0;
-        for (double x : r.x) drift = std::max(drift, std::abs(x - x0));
         const double rolled = 0.5*5.0/7.0*g0*std::sin(theta)*T*T;
         std::printf("  %s, mu_r %.2f at tan(theta) = mu_r/2: moved %.3e m in %.2f s "
             "(%.2e of rolling freely), spin at the end %.2e rad/s\n",
