@@ -17,6 +17,7 @@
 #include "polyMesh.H"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 
 
@@ -62,12 +63,17 @@ std::vector<contactMaterial> Foam::immersedDEMReaders::readMaterials(const dicti
         {
             return d.found(key) ? "" : " (default)";
         };
-        Info<< "    material " << e.keyword() << ": youngsModulus "
-            << m.youngsModulus << " Pa, poissonsRatio " << m.poissonsRatio
-            << ", restitution " << m.restitution << given("restitution")
-            << ", friction " << m.friction << given("friction")
-            << ", rollingFriction " << m.rollingFriction << given("rollingFriction")
-            << endl;
+        // (6 digits whatever the case's writePrecision)
+        char line[256];
+        std::snprintf
+        (
+            line, sizeof(line),
+            "youngsModulus %g Pa, poissonsRatio %g, restitution %g%s, friction %g%s,"
+            " rollingFriction %g%s",
+            m.youngsModulus, m.poissonsRatio, m.restitution, given("restitution"),
+            m.friction, given("friction"), m.rollingFriction, given("rollingFriction")
+        );
+        Info<< "    material " << e.keyword() << ": " << line << endl;
         materials.push_back(m);
     }
     if (materials.empty())
